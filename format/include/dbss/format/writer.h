@@ -1,0 +1,66 @@
+// Writing .dbss containers.
+//
+// serialize() builds a whole file in memory; write_file_atomic() puts bytes
+// under a path without ever leaving a partial file under that name.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "dbss/format/container.h"
+#include "dbss/format/status.h"
+
+namespace dbss::format {
+
+struct FileContents {
+  // level_count and the control counts must agree with `levels`; the writer
+  // checks, it does not fill them in.
+  Header header;
+  ControlCodec control_codec = ControlCodec::draco;
+  std::vector<uint8_t> control_mesh;  // the codec's bytes, not empty
+  std::vector<Level> levels;          // levels[i].index == i + 1
+  std::vector<MetaEntry> metadata;    // one 'meta' chunk after the last level when not empty
+};
+
+struct WriteOptions {
+  int zstd_level = 19;  // ZSTD_minCLevel()..ZSTD_maxCLevel()
+};
+
+// One chunk after INDX, with its data; used for any chunk type.
+struct RawChunk {
+  ChunkType type;
+  std::vector<uint8_t> data;
+};
+
+// The data bytes of a HEAD chunk (kHeadSize bytes, little-endian).
+std::vector<uint8_t> encode_header(const Header& header);
+
+// The data bytes of a LEVL chunk: `level` checked (finite positive step,
+// |q| <= kMaxAbsDisplacement) and zstd-compressed at `zstd_level`.
+Result<std::vector<uint8_t>> encode_level(const Level& level, int zstd_level);
+
+// The data bytes of a CTRL chunk.
+std::vector<uint8_t> encode_control(ControlCodec codec, std::span<const uint8_t> payload);
+
+// The data bytes of a 'meta' chunk; fails on an empty or over-long key.
+Result<std::vector<uint8_t>> encode_metadata(const std::vector<MetaEntry>& entries);
+
+// Signature, HEAD, an INDX listing `body`, then `body` in order, each chunk
+// framed with its length and CRC32C.  Performs no semantic checks, so tests
+// can build any file, valid or not.
+std::vector<uint8_t> assemble(std::span<const uint8_t> head_data, std::span<const RawChunk> body);
+
+// A complete, valid file: checks `contents` against the format's rules
+// (including that each level has the odd-vertex count the control counts
+// imply) and returns invalid_argument naming the first problem.
+Result<std::vector<uint8_t>> serialize(const FileContents& contents, const WriteOptions& options = {});
+
+// Writes `bytes` to a temporary file in the directory of `path`, flushes it
+// to disk and renames it over `path`.  On any failure the temporary file is
+// removed and `path` is left as it was; the Status names the path and the
+// system's reason.
+Status write_file_atomic(const std::string& path, std::span<const uint8_t> bytes);
+
+}  // namespace dbss::format

@@ -1,0 +1,454 @@
+#include "dbss/format/reader.h"
+
+#include <zstd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <new>
+
+#include "byte_io.h"
+#include "dbss/format/crc32c.h"
+#include "rules.h"
+
+namespace dbss::format {
+
+using namespace detail;
+
+namespace {
+
+constexpr uint32_t kMaxHeadSize = 1024;
+constexpr uint32_t kLevelFixed = 16;  // LEVL bytes before the zstd frame
+
+std::string hex32(uint32_t v) {
+  char b[16];
+  std::snprintf(b, sizeof b, "0x%08X", v);
+  return b;
+}
+
+// A chunk type as text that is safe to print even when the bytes are not letters.
+std::string printable(const ChunkType& t) {
+  std::string s;
+  for (char ch : t.c) {
+    const auto u = static_cast<unsigned char>(ch);
+    if (u >= 0x20 && u < 0x7F) {
+      s += ch;
+    } else {
+      char b[8];
+      std::snprintf(b, sizeof b, "\\x%02X", u);
+      s += b;
+    }
+  }
+  return s;
+}
+
+}  // namespace
+
+Reader::Reader(const Limits& limits) : limits_(limits) {}
+
+bool Reader::complete() const noexcept { return stage_ == Stage::done && status_.ok(); }
+
+Status Reader::fail(ErrorCode code, std::string message, uint64_t at) {
+  status_ = Status(code, std::move(message), at);
+  return status_;
+}
+
+std::string Reader::chunk_name() const {
+  if (chunk_index_ == 0) return "chunk 'HEAD'";
+  if (chunk_index_ == 1) return "chunk 'INDX'";
+  return "chunk '" + printable(chunk_type_) + "' (entry " + std::to_string(chunk_index_ - 2) + " of the table of contents)";
+}
+
+Status Reader::feed(std::span<const uint8_t> bytes) {
+  if (failed()) return status_;
+  // Every size is bounded by Limits before anything is allocated, but the
+  // limits are the caller's choice: running out of memory must still come
+  // back as a value.
+  try {
+    return feed_bytes(bytes);
+  } catch (const std::bad_alloc&) {
+    return fail(ErrorCode::limit_exceeded, "out of memory while reading " + chunk_name(), offset_);
+  }
+}
+
+Status Reader::feed_bytes(std::span<const uint8_t> bytes) {
+  size_t i = 0;
+  const size_t n = bytes.size();
+  while (i < n) {
+    switch (stage_) {
+      case Stage::signature: {
+        // Compared byte by byte so a wrong file fails on its first wrong byte.
+        const uint8_t b = bytes[i];
+        if (b != kSignature[offset_])
+          return fail(ErrorCode::bad_signature,
+                      "not a .dbss file: signature byte " + std::to_string(offset_) + " is " + std::to_string(b) +
+                          ", expected " + std::to_string(kSignature[offset_]),
+                      offset_);
+        ++i;
+        ++offset_;
+        if (offset_ == kSignature.size()) {
+          stage_ = Stage::chunk_head;
+          need_ = 8;
+          buf_.clear();
+        }
+        break;
+      }
+      case Stage::chunk_head:
+      case Stage::chunk_crc: {
+        const size_t take = std::min(need_ - buf_.size(), n - i);
+        buf_.insert(buf_.end(), bytes.begin() + i, bytes.begin() + i + take);
+        i += take;
+        offset_ += take;
+        if (buf_.size() == need_) {
+          Status s = stage_ == Stage::chunk_head ? begin_chunk() : end_chunk();
+          if (!s.ok()) return s;
+        }
+        break;
+      }
+      case Stage::chunk_data: {
+        const size_t take = static_cast<size_t>(std::min<uint64_t>(chunk_length_ - chunk_data_.size(), n - i));
+        chunk_data_.insert(chunk_data_.end(), bytes.begin() + i, bytes.begin() + i + take);
+        i += take;
+        offset_ += take;
+        if (chunk_data_.size() == chunk_length_) {
+          stage_ = Stage::chunk_crc;
+          need_ = 4;
+          buf_.clear();
+        }
+        break;
+      }
+      case Stage::done:
+        return fail(ErrorCode::trailing_data,
+                    "data after the end of the file declared by the table of contents (" +
+                        std::to_string(file_size_) + " bytes)",
+                    offset_);
+    }
+  }
+  return status_;
+}
+
+Status Reader::begin_chunk() {
+  chunk_offset_ = offset_ - 8;
+  chunk_length_ = load_u32(buf_.data());
+  std::copy(buf_.begin() + 4, buf_.begin() + 8, chunk_type_.c.begin());
+  running_crc_ = crc32c(std::span<const uint8_t>(buf_.data(), 8));
+  const uint64_t at = chunk_offset_;
+
+  if (chunk_index_ == 0) {
+    if (!(chunk_type_ == kHead))
+      return fail(ErrorCode::bad_structure, "the first chunk must be 'HEAD', found '" + printable(chunk_type_) + "'", at);
+    if (chunk_length_ < kHeadSize || chunk_length_ > kMaxHeadSize)
+      return fail(ErrorCode::bad_structure,
+                  "chunk 'HEAD' has length " + std::to_string(chunk_length_) + ", expected 56..1024", at);
+  } else if (chunk_index_ == 1) {
+    if (!(chunk_type_ == kIndx))
+      return fail(ErrorCode::bad_structure,
+                  "the second chunk must be 'INDX', found '" + printable(chunk_type_) + "'", at);
+    if (chunk_length_ < 32 || (chunk_length_ - 16) % 16 != 0)
+      return fail(ErrorCode::bad_structure,
+                  "chunk 'INDX' has length " + std::to_string(chunk_length_) + ", expected 16 + 16 * entries", at);
+    if ((chunk_length_ - 16) / 16 > limits_.max_chunks)
+      return fail(ErrorCode::limit_exceeded,
+                  "table of contents lists " + std::to_string((chunk_length_ - 16) / 16) + " chunks, over the limit of " +
+                      std::to_string(limits_.max_chunks),
+                  at);
+  } else {
+    const TocEntry& e = toc_[chunk_index_ - 2];
+    if (!(chunk_type_ == e.type) || chunk_length_ != e.length || chunk_offset_ != e.offset)
+      return fail(ErrorCode::bad_structure,
+                  "chunk '" + printable(chunk_type_) + "' of length " + std::to_string(chunk_length_) +
+                      " where the table of contents lists '" + printable(e.type) + "' of length " +
+                      std::to_string(e.length),
+                  at);
+  }
+  // No reserve(length): the buffer grows only with bytes that really arrive.
+  chunk_data_.clear();
+  if (chunk_length_ == 0) {
+    stage_ = Stage::chunk_crc;
+    need_ = 4;
+  } else {
+    stage_ = Stage::chunk_data;
+  }
+  buf_.clear();
+  return {};
+}
+
+Status Reader::end_chunk() {
+  const uint32_t stored = load_u32(buf_.data());
+  const uint32_t actual = crc32c_extend(running_crc_, chunk_data_);
+  if (stored != actual)
+    return fail(ErrorCode::checksum_mismatch,
+                chunk_name() + " at byte " + std::to_string(chunk_offset_) + " is damaged: stored CRC32C " +
+                    hex32(stored) + ", computed " + hex32(actual),
+                offset_ - 4);
+
+  Status s;
+  if (chunk_index_ == 0) {
+    s = on_head();
+  } else if (chunk_index_ == 1) {
+    s = on_toc();
+  } else if (chunk_type_ == kCtrl) {
+    s = on_control();
+  } else if (chunk_type_ == kLevl) {
+    s = on_level();
+  } else if (chunk_type_ == kMeta) {
+    s = on_meta();
+  } else {
+    ++ancillary_skipped_;  // unknown critical types were refused with the table of contents
+  }
+  if (!s.ok()) return s;
+
+  if (chunk_index_ >= 2) ++body_done_;
+  ++chunk_index_;
+  chunk_data_ = {};
+  buf_.clear();
+  if (chunk_index_ >= 2 && body_done_ == toc_.size()) {
+    stage_ = Stage::done;
+  } else {
+    stage_ = Stage::chunk_head;
+    need_ = 8;
+  }
+  return {};
+}
+
+Status Reader::on_head() {
+  const uint8_t* d = chunk_data_.data();
+  const uint64_t at = chunk_offset_ + 8;
+  Header h;
+  h.version_major = load_u16(d);
+  h.version_minor = load_u16(d + 2);
+  h.flags = load_u32(d + 4);
+  h.level_count = d[8];
+  h.displacement_mode = d[9];
+  h.control_position_bits = d[10];
+  h.control_vertex_count = load_u32(d + 12);
+  h.control_edge_count = load_u32(d + 16);
+  h.control_triangle_count = load_u32(d + 20);
+  for (int k = 0; k < 3; ++k) {
+    h.bbox_min[k] = load_f32(d + 24 + 4 * k);
+    h.bbox_max[k] = load_f32(d + 36 + 4 * k);
+  }
+  h.error_target = load_f32(d + 48);
+  if (Status s = check_header(h, at); !s.ok()) return fail(s.code(), s.message(), at);
+  if (h.version_minor == 0 && chunk_length_ != kHeadSize)
+    return fail(ErrorCode::bad_structure, "HEAD of version 1.0 must be 56 bytes long", chunk_offset_);
+  if (d[11] != 0 || load_u32(d + 52) != 0) return fail(ErrorCode::bad_field, "HEAD: reserved bytes are not zero", at);
+  if (h.level_count > limits_.max_levels)
+    return fail(ErrorCode::limit_exceeded,
+                "file has " + std::to_string(h.level_count) + " levels, over the limit of " +
+                    std::to_string(limits_.max_levels),
+                at + 8);
+  const auto finest = counts_at_level({h.control_vertex_count, h.control_edge_count, h.control_triangle_count},
+                                      h.level_count);
+  if (!finest) return fail(ErrorCode::bad_field, "HEAD: vertex counts overflow at the finest level", at);
+  if (finest->vertices > limits_.max_vertices)
+    return fail(ErrorCode::limit_exceeded,
+                "level " + std::to_string(h.level_count) + " would have " + std::to_string(finest->vertices) +
+                    " vertices, over the limit of " + std::to_string(limits_.max_vertices),
+                at);
+  header_ = h;
+  has_header_ = true;
+  return {};
+}
+
+Status Reader::on_toc() {
+  const uint8_t* d = chunk_data_.data();
+  const uint64_t at = chunk_offset_ + 8;
+  const uint64_t file_size = load_u64(d);
+  const uint32_t count = load_u32(d + 8);
+  if (count != (chunk_length_ - 16) / 16)
+    return fail(ErrorCode::bad_structure,
+                "INDX: entry_count " + std::to_string(count) + " disagrees with the chunk length", at + 8);
+  if (load_u32(d + 12) != 0) return fail(ErrorCode::bad_field, "INDX: reserved field is not zero", at + 12);
+  if (file_size > limits_.max_file_size)
+    return fail(ErrorCode::limit_exceeded,
+                "file declares " + std::to_string(file_size) + " bytes, over the limit of " +
+                    std::to_string(limits_.max_file_size),
+                at);
+
+  std::vector<TocEntry> toc;
+  toc.reserve(count);  // count <= max_chunks, checked in begin_chunk
+  uint64_t expect = offset_;
+  uint32_t controls = 0, levels = 0;
+  for (uint32_t i = 0; i < count; ++i) {
+    const uint8_t* p = d + 16 + 16 * size_t{i};
+    const uint64_t eat = at + 16 + 16 * uint64_t{i};
+    TocEntry e;
+    std::copy(p, p + 4, e.type.c.begin());
+    e.length = load_u32(p + 4);
+    e.offset = load_u64(p + 8);
+    const std::string name = "INDX entry " + std::to_string(i) + " ('" + printable(e.type) + "')";
+    if (!e.type.well_formed()) return fail(ErrorCode::bad_structure, name + ": type is not four ASCII letters", eat);
+    if (e.offset != expect)
+      return fail(ErrorCode::bad_structure,
+                  name + ": offset " + std::to_string(e.offset) + ", expected " + std::to_string(expect), eat + 8);
+    if (e.end() > file_size)
+      return fail(ErrorCode::bad_structure, name + ": ends past the declared file size", eat + 4);
+    expect = e.end();
+    if (e.type == kHead || e.type == kIndx)
+      return fail(ErrorCode::bad_structure, name + ": HEAD and INDX may appear only once, first", eat);
+    if (e.type == kCtrl) {
+      if (++controls > 1) return fail(ErrorCode::bad_structure, name + ": a second CTRL chunk", eat);
+    } else if (e.type == kLevl) {
+      if (controls == 0) return fail(ErrorCode::bad_structure, name + ": LEVL before CTRL", eat);
+      ++levels;
+    } else if (e.type.critical()) {
+      return fail(ErrorCode::unknown_critical_chunk,
+                  name + ": critical chunk type unknown to this reader (version 1.0)", eat);
+    } else if (e.length > limits_.max_ancillary_bytes) {
+      return fail(ErrorCode::limit_exceeded,
+                  name + ": " + std::to_string(e.length) + " bytes, over the ancillary limit of " +
+                      std::to_string(limits_.max_ancillary_bytes),
+                  eat + 4);
+    }
+    toc.push_back(e);
+  }
+  if (controls != 1) return fail(ErrorCode::bad_structure, "INDX: the file has no CTRL chunk", at);
+  if (levels != header_.level_count)
+    return fail(ErrorCode::bad_structure,
+                "INDX lists " + std::to_string(levels) + " LEVL chunks but HEAD declares " +
+                    std::to_string(header_.level_count),
+                at);
+  if (expect != file_size)
+    return fail(ErrorCode::bad_structure,
+                "INDX: file_size " + std::to_string(file_size) + " but the chunks end at " + std::to_string(expect), at);
+  toc_ = std::move(toc);
+  file_size_ = file_size;
+  has_toc_ = true;
+  return {};
+}
+
+Status Reader::on_control() {
+  const uint64_t at = chunk_offset_ + 8;
+  if (chunk_length_ < 5) return fail(ErrorCode::bad_field, "CTRL: no control mesh bytes", at);
+  if (chunk_data_[0] != static_cast<uint8_t>(ControlCodec::draco))
+    return fail(ErrorCode::bad_field, "CTRL: unknown codec " + std::to_string(chunk_data_[0]), at);
+  if (chunk_data_[1] | chunk_data_[2] | chunk_data_[3])
+    return fail(ErrorCode::bad_field, "CTRL: reserved bytes are not zero", at + 1);
+  control_codec_ = ControlCodec::draco;
+  control_payload_.assign(chunk_data_.begin() + 4, chunk_data_.end());
+  has_control_ = true;
+  return {};
+}
+
+Status Reader::on_level() {
+  const uint8_t* d = chunk_data_.data();
+  const uint64_t at = chunk_offset_ + 8;
+  const uint32_t expected_index = levels_ready() + 1;
+  if (chunk_length_ < kLevelFixed + 1)
+    return fail(ErrorCode::bad_field, "LEVL " + std::to_string(expected_index) + ": chunk too short", at);
+  Level level;
+  level.index = d[0];
+  const uint8_t coding = d[1];
+  const uint32_t count = load_u32(d + 4);
+  level.step = load_f32(d + 8);
+  const uint32_t raw_size = load_u32(d + 12);
+  const std::string name = "LEVL " + std::to_string(expected_index);
+  if (level.index != expected_index)
+    return fail(ErrorCode::bad_structure, name + ": level index field is " + std::to_string(level.index), at);
+  if (coding > 1) return fail(ErrorCode::bad_field, name + ": unknown coding " + std::to_string(coding), at + 1);
+  level.coding = static_cast<DisplacementCoding>(coding);
+  if (load_u16(d + 2) != 0) return fail(ErrorCode::bad_field, name + ": reserved field is not zero", at + 2);
+
+  const MeshCounts control{header_.control_vertex_count, header_.control_edge_count, header_.control_triangle_count};
+  const auto expect = odd_vertex_count(control, expected_index);  // cannot overflow: HEAD was checked
+  if (!expect || count != *expect)
+    return fail(ErrorCode::bad_field,
+                name + ": odd_count " + std::to_string(count) + ", but the control mesh implies " +
+                    std::to_string(expect.value_or(0)),
+                at + 4);
+  if (!std::isfinite(level.step) || !(level.step > 0))
+    return fail(ErrorCode::bad_field, name + ": step is not a finite positive number", at + 8);
+  if (!raw_size_valid(raw_size, level.coding, count))
+    return fail(ErrorCode::bad_field, name + ": raw_size " + std::to_string(raw_size) + " does not fit " +
+                                          std::to_string(count) + " values",
+                at + 12);
+
+  const uint8_t* src = d + kLevelFixed;
+  const size_t src_size = chunk_length_ - kLevelFixed;
+  const size_t frame = ZSTD_findFrameCompressedSize(src, src_size);
+  if (ZSTD_isError(frame) || frame != src_size)
+    return fail(ErrorCode::compression, name + ": payload is not exactly one zstd frame", at + kLevelFixed);
+  const unsigned long long declared = ZSTD_getFrameContentSize(src, src_size);
+  if (declared == ZSTD_CONTENTSIZE_ERROR)
+    return fail(ErrorCode::compression, name + ": bad zstd frame header", at + kLevelFixed);
+  if (declared != ZSTD_CONTENTSIZE_UNKNOWN && declared != raw_size)
+    return fail(ErrorCode::bad_field, name + ": zstd frame holds " + std::to_string(declared) + " bytes, raw_size says " +
+                                          std::to_string(raw_size),
+                at + kLevelFixed);
+  // raw_size <= 4 * count and count is bounded by max_vertices via HEAD.
+  std::vector<uint8_t> raw(raw_size);
+  const size_t got = ZSTD_decompress(raw.data(), raw.size(), src, src_size);
+  if (ZSTD_isError(got))
+    return fail(ErrorCode::compression, name + ": zstd: " + ZSTD_getErrorName(got), at + kLevelFixed);
+  if (got != raw_size)
+    return fail(ErrorCode::compression, name + ": zstd frame decompressed to " + std::to_string(got) + " bytes, not " +
+                                            std::to_string(raw_size),
+                at + kLevelFixed);
+  if (Status s = unpack_displacements(raw, level.coding, count, at + kLevelFixed, level.q); !s.ok())
+    return fail(s.code(), name + ": " + s.message(), s.offset());
+  levels_.push_back(std::move(level));
+  return {};
+}
+
+Status Reader::on_meta() {
+  const uint8_t* d = chunk_data_.data();
+  const size_t n = chunk_data_.size();
+  const uint64_t at = chunk_offset_ + 8;
+  if (n < 4) return fail(ErrorCode::bad_field, "meta: chunk too short", at);
+  const uint32_t count = load_u32(d);
+  if (count > (n - 4) / 6)  // each entry takes at least 1 + 1 + 4 bytes
+    return fail(ErrorCode::bad_field, "meta: " + std::to_string(count) + " entries cannot fit in the chunk", at);
+  std::vector<MetaEntry> entries;
+  entries.reserve(count);
+  size_t p = 4;
+  for (uint32_t i = 0; i < count; ++i) {
+    if (n - p < 1) return fail(ErrorCode::bad_field, "meta: entry " + std::to_string(i) + " cut short", at + p);
+    const size_t klen = d[p++];
+    if (n - p < klen + 4) return fail(ErrorCode::bad_field, "meta: entry " + std::to_string(i) + " cut short", at + p);
+    MetaEntry e;
+    e.key.assign(reinterpret_cast<const char*>(d + p), klen);
+    p += klen;
+    if (!meta_key_valid(e.key))
+      return fail(ErrorCode::bad_field, "meta: entry " + std::to_string(i) + " has an empty key or a NUL in it", at + p);
+    const uint32_t vlen = load_u32(d + p);
+    p += 4;
+    if (n - p < vlen) return fail(ErrorCode::bad_field, "meta: entry " + std::to_string(i) + " cut short", at + p);
+    e.value.assign(reinterpret_cast<const char*>(d + p), vlen);
+    p += vlen;
+    entries.push_back(std::move(e));
+  }
+  if (p != n) return fail(ErrorCode::bad_field, "meta: bytes after the last entry", at + p);
+  for (auto& e : entries) metadata_.push_back(std::move(e));
+  return {};
+}
+
+Status Reader::finish() {
+  if (failed()) return status_;
+  if (stage_ == Stage::done) return status_;
+  std::string where;
+  switch (stage_) {
+    case Stage::signature: where = "inside the signature"; break;
+    case Stage::chunk_head:
+      where = chunk_index_ >= 2 ? "before the end of chunk entry " + std::to_string(chunk_index_ - 2) +
+                                      " ('" + printable(toc_[chunk_index_ - 2].type) + "')"
+                                : (chunk_index_ == 0 ? "before chunk 'HEAD' is complete" : "before chunk 'INDX' is complete");
+      break;
+    case Stage::chunk_data:
+    case Stage::chunk_crc: where = "inside " + chunk_name(); break;
+    case Stage::done: break;
+  }
+  std::string total = has_toc_ ? " of " + std::to_string(file_size_) + " declared bytes" : "";
+  return fail(ErrorCode::truncated,
+              "file ends after " + std::to_string(offset_) + total + ", " + where + "; " +
+                  std::to_string(levels_ready()) + " of " + std::to_string(header_.level_count) + " levels complete",
+              offset_);
+}
+
+Reader read_all(std::span<const uint8_t> bytes, const Limits& limits) {
+  Reader r(limits);
+  if (r.feed(bytes).ok()) r.finish();
+  return r;
+}
+
+}  // namespace dbss::format

@@ -1,0 +1,33 @@
+// Checks and payload codings shared by the writer and the reader, so both
+// sides enforce one set of rules.  Internal to dbss_format.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "dbss/format/container.h"
+#include "dbss/format/status.h"
+
+namespace dbss::format::detail {
+
+// Field ranges of HEAD (spec: "HEAD").  `at` is the offset errors report.
+Status check_header(const Header& h, uint64_t at);
+
+// Odd-vertex count of every level 1..h.level_count; fails with bad_field if a
+// count overflows.
+Status derived_odd_counts(const Header& h, uint64_t at, std::vector<uint64_t>& odd_counts);
+
+// Zigzag + the LEVL coding, before zstd.
+std::vector<uint8_t> pack_displacements(std::span<const int32_t> q, DisplacementCoding coding);
+// Inverse of pack_displacements; checks raw's size and every value.
+Status unpack_displacements(std::span<const uint8_t> raw, DisplacementCoding coding, size_t count,
+                            uint64_t at, std::vector<int32_t>& q);
+
+// Valid raw_size for `count` values in `coding`.
+bool raw_size_valid(uint64_t raw_size, DisplacementCoding coding, uint64_t count);
+
+// MetaEntry key rule: 1..255 bytes, no NUL.
+bool meta_key_valid(const std::string& key);
+
+}  // namespace dbss::format::detail

@@ -1,0 +1,40 @@
+# Runs the dbss command on good, damaged and missing files and checks exit
+# codes and messages.  Invoked by CTest with -DDBSS, -DEXAMPLE, -DWORK.
+file(REMOVE_RECURSE ${WORK})
+file(MAKE_DIRECTORY ${WORK})
+
+function(expect_run expected_rc must_contain)
+  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT rc EQUAL expected_rc)
+    message(FATAL_ERROR "'${ARGN}' exited ${rc}, expected ${expected_rc}\nstdout: ${out}\nstderr: ${err}")
+  endif()
+  if(must_contain AND NOT "${out}${err}" MATCHES "${must_contain}")
+    message(FATAL_ERROR "'${ARGN}' output lacks '${must_contain}'\nstdout: ${out}\nstderr: ${err}")
+  endif()
+endfunction()
+
+set(f ${WORK}/torus.dbss)
+expect_run(0 "level 3: 2400 odd vertices" ${EXAMPLE} ${f})
+expect_run(0 "complete, every chunk verified" ${DBSS} info ${f})
+expect_run(0 "\"complete\": true" ${DBSS} info ${f} --json)
+expect_run(0 "usage: dbss info" ${DBSS} info --help)
+expect_run(0 "commands:" ${DBSS} --help)
+expect_run(1 "usage: dbss" ${DBSS})
+expect_run(1 "unknown command 'frobnicate'" ${DBSS} frobnicate)
+expect_run(1 "unknown option '--bogus'" ${DBSS} info ${f} --bogus)
+expect_run(1 "${WORK}/missing.dbss: cannot open" ${DBSS} info ${WORK}/missing.dbss)
+expect_run(1 "is a directory" ${DBSS} info ${WORK})
+
+# A cut file: verified chunks are listed, the error names the truncation.
+# A cut file: verified chunks are listed, the error names the truncation.
+file(SIZE ${f} n)
+find_program(HEAD head)
+if(HEAD)
+  math(EXPR bytes "${n} / 2")
+  execute_process(COMMAND ${HEAD} -c ${bytes} ${f} OUTPUT_FILE ${WORK}/cut.dbss)
+  expect_run(1 "truncated at byte" ${DBSS} info ${WORK}/cut.dbss)
+  execute_process(COMMAND ${HEAD} -c 100 ${f} OUTPUT_FILE ${WORK}/cut2.dbss)
+  expect_run(1 "NOT complete" ${DBSS} info ${WORK}/cut2.dbss)
+endif()
+file(WRITE ${WORK}/text.dbss "hello, this is not a dbss file\n")
+expect_run(1 "bad_signature" ${DBSS} info ${WORK}/text.dbss)

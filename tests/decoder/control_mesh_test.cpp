@@ -1,0 +1,99 @@
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <array>
+#include <set>
+
+#include "../shapes.h"
+#include "dbss/decoder/control_mesh.h"
+#include "dbss/encoder/control_mesh_codec.h"
+
+using dbss::TriangleMesh;
+
+namespace {
+
+// Triangles as sets of rounded positions, so two meshes compare without
+// depending on vertex numbering or on where a triangle's corners start.
+std::multiset<std::array<std::array<long, 3>, 3>> geometric_triangles(const TriangleMesh& m, double cell) {
+  std::multiset<std::array<std::array<long, 3>, 3>> out;
+  for (size_t f = 0; f < m.triangle_count(); ++f) {
+    std::array<std::array<long, 3>, 3> t;
+    for (int k = 0; k < 3; ++k)
+      for (int a = 0; a < 3; ++a) t[k][a] = std::lround(m.positions[3 * m.triangles[3 * f + k] + a] / cell);
+    // Rotate so the smallest corner comes first; keeps orientation.
+    const auto first = std::min_element(t.begin(), t.end()) - t.begin();
+    std::rotate(t.begin(), t.begin() + first, t.end());
+    out.insert(t);
+  }
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("Draco control mesh round trip keeps counts, positions within quantization, and triangles") {
+  const TriangleMesh in = dbss::test::torus(10, 5);
+  for (int bits : {11, 14, 16, 20}) {
+    INFO("position bits " << bits);
+    auto bytes = dbss::encode_control_mesh(in, {bits, 0});
+    REQUIRE(bytes.ok());
+    auto out = dbss::decode_control_mesh(bytes.value(), 1000, 1000);
+    REQUIRE(out.ok());
+    const TriangleMesh& m = out.value();
+    CHECK(m.vertex_count() == 50);
+    CHECK(m.triangle_count() == 100);
+    // Every decoded vertex is within half a quantization step of an input vertex.
+    const double range = 2 * 1.4;
+    const double tol = range / ((1 << bits) - 1) * 0.5 * std::sqrt(3.0) + 1e-6;
+    for (size_t v = 0; v < m.vertex_count(); ++v) {
+      double best = 1e9;
+      for (size_t w = 0; w < in.vertex_count(); ++w) {
+        double d2 = 0;
+        for (int a = 0; a < 3; ++a) d2 += std::pow(m.positions[3 * v + a] - in.positions[3 * w + a], 2);
+        best = std::min(best, std::sqrt(d2));
+      }
+      REQUIRE(best <= tol);
+    }
+    // Same oriented triangles, compared by position on a grid far coarser
+    // than the quantization step (and far finer than the edge length).
+    if (bits >= 14) CHECK(geometric_triangles(m, 0.05) == geometric_triangles(in, 0.05));
+  }
+}
+
+TEST_CASE("Draco decode is deterministic: same bytes, same mesh") {
+  auto bytes = dbss::encode_control_mesh(dbss::test::torus(12, 6), {});
+  REQUIRE(bytes.ok());
+  auto a = dbss::decode_control_mesh(bytes.value(), 1000, 1000);
+  auto b = dbss::decode_control_mesh(bytes.value(), 1000, 1000);
+  REQUIRE(a.ok());
+  REQUIRE(b.ok());
+  CHECK(a.value() == b.value());
+}
+
+TEST_CASE("control mesh decoding refuses limits, garbage and every truncation without crashing") {
+  auto bytes = dbss::encode_control_mesh(dbss::test::torus(10, 5), {});
+  REQUIRE(bytes.ok());
+  const auto& b = bytes.value();
+  CHECK(dbss::decode_control_mesh(b, 49, 1000).status().code() == dbss::ErrorCode::limit_exceeded);
+  CHECK(dbss::decode_control_mesh(b, 1000, 99).status().code() == dbss::ErrorCode::limit_exceeded);
+  const std::vector<uint8_t> garbage(100, 0xAB);
+  CHECK(!dbss::decode_control_mesh(garbage, 1000, 1000).ok());
+  CHECK(!dbss::decode_control_mesh({}, 1000, 1000).ok());
+  size_t failures = 0;
+  for (size_t n = 0; n < b.size(); ++n) {
+    auto r = dbss::decode_control_mesh(std::span<const uint8_t>(b.data(), n), 1000, 1000);
+    if (!r.ok()) ++failures;
+  }
+  // Draco has no checksum, so a cut may still decode to something; the
+  // container's CRC is what catches damage.  Most cuts must fail outright.
+  CHECK(failures > b.size() / 2);
+}
+
+TEST_CASE("encode_control_mesh rejects malformed meshes") {
+  TriangleMesh m = dbss::test::torus(4, 3);
+  m.triangles[5] = 1000;
+  CHECK(dbss::encode_control_mesh(m).status().code() == dbss::ErrorCode::invalid_argument);
+  TriangleMesh empty;
+  CHECK(!dbss::encode_control_mesh(empty).ok());
+  CHECK(dbss::encode_control_mesh(dbss::test::torus(4, 3), {40, 0}).status().code() ==
+        dbss::ErrorCode::invalid_argument);
+}

@@ -1,0 +1,50 @@
+// The dbss command.  Exit codes: 0 success, 1 bad input or usage (the
+// message names the file and the problem), 2 internal error.
+#include <cstdio>
+#include <cstring>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "dbss/format/reader.h"
+#include "info.h"
+
+namespace {
+
+constexpr const char* kUsage =
+    "usage: dbss <command> [options]\n"
+    "\n"
+    "Displaced Butterfly Subdivision Surfaces codec, format version 1.0.\n"
+    "\n"
+    "commands:\n"
+    "  info IN.dbss [--json]   chunks, sizes, per-level counts, steps and checksum status\n"
+    "\n"
+    "Run 'dbss <command> --help' for a command's options.\n";
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::vector<std::string_view> args(argv + 1, argv + argc);
+  if (args.empty()) {
+    std::fputs(kUsage, stderr);
+    return 1;
+  }
+  if (args[0] == "--help" || args[0] == "-h" || args[0] == "help") {
+    std::fputs(kUsage, stdout);
+    return 0;
+  }
+  if (args[0] == "--version") {
+    std::printf("dbss %s (format %u.%u)\n", DBSS_VERSION, dbss::format::kVersionMajor, dbss::format::kVersionMinor);
+    return 0;
+  }
+  const std::string_view cmd = args[0];
+  args.erase(args.begin());
+  try {
+    if (cmd == "info") return dbss::tools::run_info(args);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "dbss %.*s: internal error: %s\n", static_cast<int>(cmd.size()), cmd.data(), e.what());
+    return 2;
+  }
+  std::fprintf(stderr, "dbss: unknown command '%.*s'\n\n%s", static_cast<int>(cmd.size()), cmd.data(), kUsage);
+  return 1;
+}
