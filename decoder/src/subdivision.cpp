@@ -1,0 +1,72 @@
+#include "dbss/decoder/subdivision.h"
+
+#include <algorithm>
+#include <cstring>
+#include <thread>
+
+namespace dbss {
+
+LevelPlan plan_level(const LevelTopology& t) {
+  LevelPlan plan;
+  plan.vertex_count = t.vertex_count;
+  plan.stencils = build_stencils(t);
+  plan.rings = build_odd_rings(t);
+  return plan;
+}
+
+namespace {
+
+// Runs fn(begin, end) over [0, n) in `threads` contiguous pieces.  Each
+// output element is written by exactly one piece, so the split cannot change
+// any value.
+template <class F>
+void parallel_ranges(uint32_t n, unsigned threads, F&& fn) {
+  constexpr uint32_t kMinPerThread = 32768;
+  threads = std::max(1u, std::min<unsigned>(threads, n / kMinPerThread));
+  if (threads <= 1) {
+    fn(0u, n);
+    return;
+  }
+  std::vector<std::thread> pool;
+  const uint32_t chunk = (n + threads - 1) / threads;
+  for (unsigned i = 1; i < threads; ++i) {
+    const uint32_t b = std::min(n, i * chunk), e = std::min(n, b + chunk);
+    pool.emplace_back([&fn, b, e] { fn(b, e); });
+  }
+  fn(0u, std::min(n, chunk));
+  for (auto& t : pool) t.join();
+}
+
+}  // namespace
+
+void subdivide_geometry(const LevelPlan& plan, std::span<const float> positions, std::span<const int32_t> q,
+                        float step, std::vector<float>& out, unsigned threads) {
+  const uint32_t evens = plan.vertex_count, odds = plan.odd_count();
+  out.resize(3 * (size_t{evens} + odds));
+  std::memcpy(out.data(), positions.data(), sizeof(float) * 3 * size_t{evens});
+  float* p = out.data();
+  float* odd = p + 3 * size_t{evens};
+  // Pass 1: every odd vertex at its stencil point (normals need all of them).
+  parallel_ranges(odds, threads, [&](uint32_t b, uint32_t e) { apply_stencils(plan.stencils, p, b, e, odd + 3 * size_t{b}); });
+  if (q.empty()) return;
+  // Pass 2: normals from the undisplaced level, then the displacements.  The
+  // normals of a range are kept aside so no vertex moves before every normal
+  // that reads it is computed.
+  std::vector<double> normals(3 * size_t{odds});
+  parallel_ranges(odds, threads, [&](uint32_t b, uint32_t e) {
+    odd_normals(plan.rings.data(), p, evens, b, e, normals.data() + 3 * size_t{b});
+  });
+  const double delta = step;
+  parallel_ranges(odds, threads, [&](uint32_t b, uint32_t e) {
+    for (uint32_t i = b; i < e; ++i) {
+      const double d = static_cast<double>(q[i]) * delta;
+      float* v = odd + 3 * size_t{i};
+      const double* n = normals.data() + 3 * size_t{i};
+      v[0] = static_cast<float>(v[0] + d * n[0]);
+      v[1] = static_cast<float>(v[1] + d * n[1]);
+      v[2] = static_cast<float>(v[2] + d * n[2]);
+    }
+  });
+}
+
+}  // namespace dbss
