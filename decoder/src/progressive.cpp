@@ -1,0 +1,160 @@
+#include "dbss/decoder/progressive.h"
+
+#include <new>
+#include <optional>
+#include <string>
+#include <thread>
+
+#include "dbss/decoder/control_mesh.h"
+#include "dbss/decoder/subdivision.h"
+
+namespace dbss {
+
+struct ProgressiveDecoder::State {
+  DecoderOptions options;
+  format::Reader reader;
+  Status status;  // decoder-side errors (the reader keeps its own)
+  unsigned threads = 1;
+
+  bool have_base = false;
+  LevelTopology base_topology;
+  std::vector<float> base_positions;
+
+  // The current level: positions always; topology unless it is the file's
+  // last level (nothing finer can be asked for), when only triangles are kept.
+  uint32_t level = 0;
+  bool have_current = false;
+  std::optional<LevelTopology> topology;
+  std::vector<uint32_t> triangles;
+  std::vector<float> positions;
+
+  // keep_levels: every level decoded so far.
+  std::vector<std::vector<float>> kept_positions;
+  std::vector<std::vector<uint32_t>> kept_triangles;
+
+  explicit State(const DecoderOptions& o) : options(o), reader(o.limits) {
+    threads = o.threads ? o.threads : std::max(1u, std::thread::hardware_concurrency());
+  }
+
+  const Status& first_error() const { return !status.ok() ? status : reader.status(); }
+
+  Status fail(ErrorCode code, std::string message) {
+    status = Status(code, std::move(message));
+    return status;
+  }
+
+  Status load_base() {
+    const format::Header& h = reader.header();
+    auto mesh = decode_control_mesh(reader.control_payload(), h.control_vertex_count, h.control_triangle_count);
+    if (!mesh.ok()) return fail(mesh.status().code(), mesh.status().message());
+    TriangleMesh& m = mesh.value();
+    if (m.vertex_count() != h.control_vertex_count || m.triangle_count() != h.control_triangle_count)
+      return fail(ErrorCode::bad_mesh, "control mesh has " + std::to_string(m.vertex_count()) + " vertices and " +
+                                           std::to_string(m.triangle_count()) + " triangles; the header declares " +
+                                           std::to_string(h.control_vertex_count) + " and " +
+                                           std::to_string(h.control_triangle_count));
+    auto topo = build_topology(static_cast<uint32_t>(m.vertex_count()), m.triangles);
+    if (!topo.ok()) return fail(topo.status().code(), "control mesh: " + topo.status().message());
+    if (topo.value().edge_count() != h.control_edge_count)
+      return fail(ErrorCode::bad_mesh, "control mesh has " + std::to_string(topo.value().edge_count()) +
+                                           " edges; the header declares " + std::to_string(h.control_edge_count));
+    base_topology = std::move(topo).value();
+    base_positions = std::move(m.positions);
+    have_base = true;
+    return {};
+  }
+
+  void reset_to_base() {
+    level = 0;
+    topology = base_topology;
+    triangles.clear();
+    positions = base_positions;
+    have_current = true;
+  }
+
+  void step() {
+    const uint32_t next = level + 1;
+    const format::Level& data = reader.level(next);
+    const LevelPlan plan = plan_level(*topology);
+    std::vector<float> out;
+    subdivide_geometry(plan, positions, data.q, data.step, out, threads);
+    positions = std::move(out);
+    if (next < reader.header().level_count || options.keep_levels) {
+      topology = refine_topology(*topology);
+    } else {
+      refine_triangles(*topology, triangles);
+      topology.reset();
+    }
+    level = next;
+  }
+
+  MeshView view() const {
+    const std::vector<uint32_t>& tris = topology ? topology->triangles : triangles;
+    return {level, positions, tris};
+  }
+};
+
+ProgressiveDecoder::ProgressiveDecoder(const DecoderOptions& options) : s_(std::make_unique<State>(options)) {}
+ProgressiveDecoder::~ProgressiveDecoder() = default;
+ProgressiveDecoder::ProgressiveDecoder(ProgressiveDecoder&&) noexcept = default;
+ProgressiveDecoder& ProgressiveDecoder::operator=(ProgressiveDecoder&&) noexcept = default;
+
+Status ProgressiveDecoder::feed(std::span<const uint8_t> bytes) {
+  if (!s_->status.ok()) return s_->status;
+  return s_->reader.feed(bytes);
+}
+
+Status ProgressiveDecoder::finish() {
+  if (!s_->status.ok()) return s_->status;
+  return s_->reader.finish();
+}
+
+const Status& ProgressiveDecoder::status() const noexcept { return s_->first_error(); }
+const format::Reader& ProgressiveDecoder::reader() const noexcept { return s_->reader; }
+
+int ProgressiveDecoder::ready_level() const noexcept {
+  if (!s_->status.ok() || !s_->reader.has_control()) return -1;
+  return static_cast<int>(s_->reader.levels_ready());
+}
+
+Result<MeshView> ProgressiveDecoder::decode(uint32_t level) {
+  State& s = *s_;
+  if (!s.status.ok()) return s.status;
+  if (static_cast<int>(level) > ready_level())
+    return Status(ErrorCode::bad_state, "level " + std::to_string(level) + " is not ready (finest ready level: " +
+                                            std::to_string(ready_level()) + ")");
+  try {
+    if (!s.have_base) {
+      if (Status st = s.load_base(); !st.ok()) return st;
+    }
+    if (s.options.keep_levels && level < s.kept_positions.size())
+      return MeshView{level, s.kept_positions[level], s.kept_triangles[level]};
+    if (!s.have_current || level < s.level) s.reset_to_base();
+    while (s.level < level) {
+      s.step();
+      if (s.options.keep_levels) {  // keep_levels keeps the topology of every level
+        if (s.kept_positions.empty()) {
+          s.kept_positions.push_back(s.base_positions);
+          s.kept_triangles.push_back(s.base_topology.triangles);
+        }
+        s.kept_positions.push_back(s.positions);
+        s.kept_triangles.push_back(s.topology->triangles);
+      }
+    }
+    return s.view();
+  } catch (const std::bad_alloc&) {
+    return s.fail(ErrorCode::limit_exceeded, "out of memory decoding level " + std::to_string(level));
+  }
+}
+
+Result<TriangleMesh> decode_bytes(std::span<const uint8_t> bytes, int level, const DecoderOptions& options) {
+  ProgressiveDecoder d(options);
+  if (Status st = d.feed(bytes); !st.ok()) return st;
+  if (Status st = d.finish(); !st.ok()) return st;
+  const uint32_t want = level < 0 ? static_cast<uint32_t>(d.ready_level()) : static_cast<uint32_t>(level);
+  auto view = d.decode(want);
+  if (!view.ok()) return view.status();
+  return view.value().copy();
+}
+
+}  // namespace dbss

@@ -1,0 +1,56 @@
+// Builds .dbss files for decoder tests from a mesh and pseudo-random
+// displacements, the way the encoder will: continuing from the Draco-decoded
+// control mesh.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "dbss/decoder/control_mesh.h"
+#include "dbss/decoder/topology.h"
+#include "dbss/encoder/control_mesh_codec.h"
+#include "dbss/format/writer.h"
+
+namespace dbss::test {
+
+inline std::vector<uint8_t> build_file(const TriangleMesh& mesh, uint8_t levels, int32_t amplitude, float step,
+                                       uint32_t seed = 1) {
+  auto draco = encode_control_mesh(mesh, {});
+  auto decoded = decode_control_mesh(draco.value(), 1 << 24, 1 << 24);
+  auto topo = build_topology(static_cast<uint32_t>(decoded.value().vertex_count()), decoded.value().triangles);
+  format::FileContents c;
+  c.header.level_count = levels;
+  c.header.control_position_bits = 16;
+  c.header.control_vertex_count = static_cast<uint32_t>(decoded.value().vertex_count());
+  c.header.control_edge_count = topo.value().edge_count();
+  c.header.control_triangle_count = static_cast<uint32_t>(decoded.value().triangle_count());
+  c.header.bbox_min = {-2, -2, -2};
+  c.header.bbox_max = {2, 2, 2};
+  c.control_mesh = std::move(draco).value();
+  const format::MeshCounts control{c.header.control_vertex_count, c.header.control_edge_count,
+                                   c.header.control_triangle_count};
+  uint32_t s = seed * 747796405u + 2891336453u;
+  for (uint8_t l = 1; l <= levels; ++l) {
+    format::Level level;
+    level.index = l;
+    level.step = step / static_cast<float>(1 << l);
+    level.coding = l % 2 ? format::DisplacementCoding::byte_planes : format::DisplacementCoding::varint;
+    level.q.resize(*format::odd_vertex_count(control, l));
+    for (auto& q : level.q) {
+      s = s * 1664525u + 1013904223u;
+      q = amplitude ? static_cast<int32_t>((s >> 8) % (2 * uint32_t(amplitude) + 1)) - amplitude : 0;
+    }
+    c.levels.push_back(std::move(level));
+  }
+  return format::serialize(c).value();
+}
+
+// FNV-1a over the bit patterns of a float array: bit-exact comparisons.
+inline uint64_t hash_floats(const float* p, size_t n) {
+  uint64_t h = 1469598103934665603ull;
+  const auto* b = reinterpret_cast<const uint8_t*>(p);
+  for (size_t i = 0; i < 4 * n; ++i) h = (h ^ b[i]) * 1099511628211ull;
+  return h;
+}
+
+}  // namespace dbss::test

@@ -1,0 +1,84 @@
+// Golden files: the decoder's output is part of the format, so decoded
+// positions of committed files must keep the exact bits recorded here, on
+// every compiler and optimisation level CI builds (gcc -O0 and -O3, clang).
+//
+// To regenerate after a deliberate, versioned format change:
+//   build/bin/codec_tests "[.write-golden]"
+#include <catch2/catch.hpp>
+
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+#include "../shapes.h"
+#include "dbss/decoder/progressive.h"
+#include "dbss/format/reader.h"
+#include "dbss/format/writer.h"
+#include "file_builder.h"
+
+using namespace dbss;
+
+namespace {
+
+const std::string kDir = std::string(DBSS_SOURCE_DIR) + "/tests/golden/v1/";
+
+struct Golden {
+  const char* name;
+  TriangleMesh mesh;
+  uint8_t levels;
+  int32_t amplitude;
+  float step;
+};
+
+std::vector<Golden> goldens() {
+  return {
+      {"torus-4-levels", test::jitter(test::torus(10, 5), 0.05f), 4, 60, 0.01f},
+      {"icosahedron-4-levels", test::jitter(test::icosahedron(), 0.1f), 4, 100, 0.02f},
+      {"bipyramid9-3-levels", test::jitter(test::bipyramid(9), 0.1f, 9), 3, 80, 0.02f},
+      {"bordered-grid-3-levels", test::jitter(test::planar_grid(5, 4), 0.2f), 3, 50, 0.05f},
+  };
+}
+
+std::vector<uint64_t> level_hashes(const std::vector<uint8_t>& file) {
+  std::vector<uint64_t> out;
+  ProgressiveDecoder d;
+  REQUIRE(d.feed(file).ok());
+  REQUIRE(d.finish().ok());
+  for (int l = 0; l <= d.ready_level(); ++l) {
+    auto v = d.decode(static_cast<uint32_t>(l));
+    REQUIRE(v.ok());
+    out.push_back(test::hash_floats(v.value().positions.data(), v.value().positions.size()));
+  }
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("golden files decode to the recorded bits at every level") {
+  for (const Golden& g : goldens()) {
+    INFO(g.name);
+    auto file = format::read_file(kDir + g.name + ".dbss");
+    REQUIRE(file.ok());
+    std::ifstream in(kDir + g.name + ".hashes");
+    REQUIRE(in);
+    std::vector<uint64_t> expect;
+    std::string word;
+    while (in >> word) expect.push_back(std::stoull(word, nullptr, 16));
+    CHECK(level_hashes(file.value()) == expect);
+  }
+}
+
+TEST_CASE("write golden files", "[.write-golden]") {
+  for (const Golden& g : goldens()) {
+    const auto bytes = test::build_file(g.mesh, g.levels, g.amplitude, g.step);
+    REQUIRE(format::write_file_atomic(kDir + g.name + ".dbss", bytes).ok());
+    std::ostringstream text;
+    for (uint64_t h : level_hashes(bytes)) {
+      char b[32];
+      std::snprintf(b, sizeof b, "%016llx\n", static_cast<unsigned long long>(h));
+      text << b;
+    }
+    const std::string s = text.str();
+    REQUIRE(format::write_file_atomic(kDir + g.name + ".hashes", std::vector<uint8_t>(s.begin(), s.end())).ok());
+  }
+}

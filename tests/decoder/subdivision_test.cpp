@@ -1,0 +1,256 @@
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <set>
+
+#include "../shapes.h"
+#include "dbss/decoder/subdivision.h"
+#include "dbss/format/container.h"
+
+using namespace dbss;
+
+namespace {
+
+LevelTopology topology_of(const TriangleMesh& m) {
+  auto t = build_topology(static_cast<uint32_t>(m.vertex_count()), m.triangles);
+  REQUIRE(t.ok());
+  return std::move(t).value();
+}
+
+// Subdivides `levels` times with pseudo-random displacements (or none).
+struct Chain {
+  std::vector<std::vector<float>> positions;
+  std::vector<LevelTopology> topology;
+};
+
+Chain subdivide(const TriangleMesh& m, int levels, int32_t amplitude = 0, unsigned threads = 1) {
+  Chain c;
+  c.topology.push_back(topology_of(m));
+  c.positions.push_back(m.positions);
+  uint32_t s = 12345;
+  for (int l = 0; l < levels; ++l) {
+    const LevelPlan plan = plan_level(c.topology.back());
+    std::vector<int32_t> q;
+    if (amplitude) {
+      q.resize(plan.odd_count());
+      for (auto& v : q) {
+        s = s * 1664525u + 1013904223u;
+        v = static_cast<int32_t>((s >> 8) % (2 * uint32_t(amplitude) + 1)) - amplitude;
+      }
+    }
+    std::vector<float> next;
+    subdivide_geometry(plan, c.positions.back(), q, 1e-3f, next, threads);
+    c.positions.push_back(std::move(next));
+    c.topology.push_back(refine_topology(c.topology.back()));
+  }
+  return c;
+}
+
+}  // namespace
+
+TEST_CASE("extraordinary weights: 3/4 plus the s_j sum to 1, symmetric, valences 3..20") {
+  for (uint32_t k = 3; k <= 20; ++k) {
+    double sum = 0.75;
+    for (uint32_t j = 0; j < k; ++j) {
+      sum += butterfly_weight(k, j);
+      if (j > 0) CHECK(butterfly_weight(k, j) == butterfly_weight(k, k - j));
+    }
+    INFO("valence " << k);
+    CHECK(std::abs(sum - 1.0) < 1e-15);
+  }
+  CHECK(butterfly_weight(3, 0) == 5.0 / 12);
+  CHECK(butterfly_weight(4, 2) == -1.0 / 8);
+  CHECK(butterfly_weight(4, 1) == 0.0);
+  // Stencils as built: every row sums to 1 (affine invariance).
+  for (const TriangleMesh& m : {test::icosahedron(), test::bipyramid(11), test::planar_grid(5, 4), test::torus(6, 5)}) {
+    const Stencils s = build_stencils(topology_of(m));
+    for (uint32_t e = 0; e < s.size(); ++e) {
+      double sum = 0;
+      for (uint32_t i = s.offset[e]; i < s.offset[e + 1]; ++i) sum += s.weight[i];
+      REQUIRE(std::abs(sum - 1.0) < 1e-14);
+    }
+  }
+}
+
+TEST_CASE("Table 1 counts: genus 1 with 50 vertices and genus 0 with 107") {
+  auto check = [](const TriangleMesh& m, std::array<uint64_t, 3> odd, std::array<uint64_t, 3> total) {
+    LevelTopology t = topology_of(m);
+    for (int l = 0; l < 3; ++l) {
+      CHECK(t.edge_count() == odd[l]);
+      t = refine_topology(t);
+      CHECK(t.vertex_count == total[l]);
+      CHECK(t.triangle_count() == 4 * (t.triangle_count() / 4));
+      // The format's count recurrence agrees with the refined topology.
+      const auto counts = format::counts_at_level({m.vertex_count(), topology_of(m).edge_count(), m.triangle_count()}, l + 1);
+      CHECK(counts->vertices == t.vertex_count);
+      CHECK(counts->edges == t.edge_count());
+      CHECK(counts->triangles == t.triangle_count());
+    }
+  };
+  check(test::torus(10, 5), {150, 600, 2400}, {200, 800, 3200});
+  check(test::uv_sphere(7, 15), {315, 1260, 5040}, {422, 1682, 6722});
+}
+
+TEST_CASE("refined topology equals a topology built from scratch from the refined triangles") {
+  for (const TriangleMesh& m : {test::icosahedron(), test::planar_grid(4, 3), test::torus(5, 4), test::bipyramid(9)}) {
+    LevelTopology t = topology_of(m);
+    for (int l = 0; l < 3; ++l) {
+      const LevelTopology fast = refine_topology(t);
+      auto slow = build_topology(fast.vertex_count, fast.triangles);
+      REQUIRE(slow.ok());
+      CHECK(fast.twin == slow.value().twin);
+      CHECK(fast.edge_of == slow.value().edge_of);
+      CHECK(fast.edge_half == slow.value().edge_half);
+      CHECK(fast.vertex_valence == slow.value().vertex_valence);
+      CHECK(fast.vertex_boundary == slow.value().vertex_boundary);
+      // Starts may differ on closed fans (any outgoing half-edge walks the whole
+      // fan); on the boundary they must be the outgoing boundary half-edge.
+      for (uint32_t v = 0; v < fast.vertex_count; ++v) {
+        CHECK(fast.triangles[fast.vertex_start[v]] == v);
+        if (fast.vertex_boundary[v]) CHECK(fast.vertex_start[v] == slow.value().vertex_start[v]);
+      }
+      t = fast;
+    }
+  }
+}
+
+TEST_CASE("even vertices never move, at every level, with displacements") {
+  const Chain c = subdivide(test::jitter(test::icosahedron(), 0.2f), 4, 50);
+  for (size_t l = 1; l < c.positions.size(); ++l) {
+    const auto& prev = c.positions[l - 1];
+    REQUIRE(std::equal(prev.begin(), prev.end(), c.positions[l].begin()));
+  }
+}
+
+TEST_CASE("a planar mesh stays planar, boundary and irregular valences included") {
+  const Chain c = subdivide(test::planar_grid(6, 5), 4);
+  for (size_t i = 2; i < c.positions.back().size(); i += 3) REQUIRE(c.positions.back()[i] == 0.0f);
+  // A tilted plane: distance to it stays at rounding level.
+  TriangleMesh tilted = test::planar_grid(6, 5);
+  for (size_t i = 0; i < tilted.positions.size(); i += 3) {
+    const float x = tilted.positions[i], y = tilted.positions[i + 1];
+    tilted.positions[i + 2] = 0.3f * x - 0.7f * y + 2.0f;
+  }
+  const Chain t = subdivide(tilted, 4);
+  for (size_t i = 0; i < t.positions.back().size(); i += 3) {
+    const auto& p = t.positions.back();
+    REQUIRE(std::abs(p[i + 2] - (0.3 * p[i] - 0.7 * p[i + 1] + 2.0)) < 1e-5);
+  }
+}
+
+TEST_CASE("the regular 8-point stencil on a hand-built patch gives the hand-computed point") {
+  // A regular lattice: quad (i, j) split along its (i,j)-(i+1,j+1) diagonal,
+  // so every interior vertex has valence 6.
+  const uint32_t n = 6;
+  TriangleMesh m;
+  auto id = [&](uint32_t i, uint32_t j) { return j * (n + 1) + i; };
+  auto height = [](uint32_t i, uint32_t j) { return static_cast<float>((i * 7 + j * 13) % 5) * 0.25f - 0.3f * i; };
+  for (uint32_t j = 0; j <= n; ++j)
+    for (uint32_t i = 0; i <= n; ++i) m.positions.insert(m.positions.end(), {float(i), float(j), height(i, j)});
+  for (uint32_t j = 0; j < n; ++j)
+    for (uint32_t i = 0; i < n; ++i) {
+      m.triangles.insert(m.triangles.end(), {id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+      m.triangles.insert(m.triangles.end(), {id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+    }
+  const LevelTopology t = topology_of(m);
+  // Edge u = (2,2), w = (3,2): opposite vertices (2,1) and (3,3); wings
+  // (3,1), (1,1), (2,3), (4,3).
+  const uint32_t u = id(2, 2), w = id(3, 2);
+  uint32_t edge = kNoHalfEdge;
+  for (uint32_t h = 0; h < t.triangles.size(); ++h)
+    if (t.triangles[h] == u && t.triangles[next_half(h)] == w) edge = t.edge_of[h];
+  REQUIRE(edge != kNoHalfEdge);
+  auto z = [&](uint32_t i, uint32_t j) { return double(height(i, j)); };
+  const double expect = 0.5 * (z(2, 2) + z(3, 2)) + 0.125 * (z(2, 1) + z(3, 3)) -
+                        0.0625 * (z(3, 1) + z(1, 1) + z(2, 3) + z(4, 3));
+  std::vector<float> out;
+  subdivide_geometry(plan_level(t), m.positions, {}, 0, out);
+  const float* p = &out[3 * (size_t{t.vertex_count} + edge)];
+  CHECK(p[0] == 2.5f);
+  CHECK(p[1] == 2.0f);
+  CHECK(p[2] == Approx(expect).margin(1e-6));
+}
+
+TEST_CASE("bordered meshes are crack-free: two halves sharing a border subdivide to the same border") {
+  // Cut a sphere along its equator ring into two bordered caps.
+  const TriangleMesh sphere = test::jitter(test::uv_sphere(7, 12), 0.03f);
+  TriangleMesh caps[2];
+  for (int c = 0; c < 2; ++c) caps[c].positions = sphere.positions;
+  for (size_t f = 0; f < sphere.triangle_count(); ++f) {
+    double z = 0;
+    for (int k = 0; k < 3; ++k) z += sphere.positions[3 * sphere.triangles[3 * f + k] + 2];
+    auto& cap = caps[z > 0 ? 0 : 1];
+    cap.triangles.insert(cap.triangles.end(), &sphere.triangles[3 * f], &sphere.triangles[3 * f + 3]);
+  }
+  // Drop unused vertices so each cap is a valid mesh.
+  std::set<std::array<float, 3>> borders[2];
+  for (int c = 0; c < 2; ++c) {
+    TriangleMesh compact;
+    std::vector<uint32_t> remap(sphere.vertex_count(), kNoHalfEdge);
+    for (uint32_t& v : caps[c].triangles) {
+      if (remap[v] == kNoHalfEdge) {
+        remap[v] = static_cast<uint32_t>(compact.vertex_count());
+        compact.positions.insert(compact.positions.end(), &sphere.positions[3 * v], &sphere.positions[3 * v + 3]);
+      }
+      compact.triangles.push_back(remap[v]);
+    }
+    const Chain ch = subdivide(compact, 3);
+    const LevelTopology& t = ch.topology.back();
+    for (uint32_t v = 0; v < t.vertex_count; ++v)
+      if (t.vertex_boundary[v]) borders[c].insert({ch.positions.back()[3 * v], ch.positions.back()[3 * v + 1], ch.positions.back()[3 * v + 2]});
+  }
+  CHECK(borders[0].size() == 12 * 8);
+  CHECK(borders[0] == borders[1]);
+}
+
+TEST_CASE("non-manifold and inconsistent input is rejected with bad_mesh") {
+  // Three triangles on one edge.
+  std::vector<uint32_t> fin = {0, 1, 2, 1, 0, 3, 0, 1, 4};
+  CHECK(build_topology(5, fin).status().code() == ErrorCode::bad_mesh);
+  // Two fans through vertex 0 (a bow tie).
+  std::vector<uint32_t> bowtie = {0, 1, 2, 0, 3, 4};
+  auto r = build_topology(5, bowtie);
+  CHECK(r.status().code() == ErrorCode::bad_mesh);
+  CHECK(r.status().message().find("vertex 0") != std::string::npos);
+  // Inconsistent orientation.
+  std::vector<uint32_t> flipped = {0, 1, 2, 0, 1, 3};
+  CHECK(build_topology(4, flipped).status().code() == ErrorCode::bad_mesh);
+  // Out of range, degenerate, unused vertex.
+  CHECK(build_topology(3, std::vector<uint32_t>{0, 1, 3}).status().code() == ErrorCode::bad_mesh);
+  CHECK(build_topology(3, std::vector<uint32_t>{0, 1, 1}).status().code() == ErrorCode::bad_mesh);
+  CHECK(build_topology(4, std::vector<uint32_t>{0, 1, 2}).status().code() == ErrorCode::bad_mesh);
+  CHECK(build_topology(3, std::vector<uint32_t>{0, 1, 2}).ok());
+}
+
+TEST_CASE("the thread count does not change a single bit") {
+  const TriangleMesh m = test::jitter(test::uv_sphere(20, 40), 0.01f);
+  const Chain one = subdivide(m, 4, 30, 1);
+  const Chain two = subdivide(m, 4, 30, 2);
+  const Chain three = subdivide(m, 4, 30, 3);
+  REQUIRE(one.positions.back().size() > 6 * 32768);
+  CHECK(one.positions.back() == two.positions.back());
+  CHECK(one.positions.back() == three.positions.back());
+}
+
+TEST_CASE("displacement moves odd vertices along the unit normal by q * step") {
+  // A flat grid: every normal is +z or -z, so a displaced odd vertex moves
+  // only in z, by exactly q * step.
+  const TriangleMesh m = test::planar_grid(5, 5);
+  const LevelTopology t = topology_of(m);
+  const LevelPlan plan = plan_level(t);
+  std::vector<int32_t> q(plan.odd_count());
+  for (size_t i = 0; i < q.size(); ++i) q[i] = static_cast<int32_t>(i % 7) - 3;
+  std::vector<float> flat, moved;
+  subdivide_geometry(plan, m.positions, {}, 0, flat);
+  subdivide_geometry(plan, m.positions, q, 0.5f, moved);
+  for (size_t i = 0; i < q.size(); ++i) {
+    const float* a = &flat[3 * (t.vertex_count + i)];
+    const float* b = &moved[3 * (t.vertex_count + i)];
+    CHECK(a[0] == b[0]);
+    CHECK(a[1] == b[1]);
+    CHECK(std::abs(b[2] - a[2]) == Approx(0.5 * std::abs(q[i])));
+    if (q[i]) CHECK((b[2] - a[2] > 0) == (q[i] > 0));  // counter-clockwise triangles face +z
+  }
+}
