@@ -1,0 +1,142 @@
+// Decode speed: dbss (whole decode of level L from the file's bytes) against
+// Draco decoding the identical final mesh, OpenMesh's Modified Butterfly
+// subdivider on the same control mesh, and a plain copy of the output arrays
+// (the memory floor), all measured in one run.
+//
+// usage: decode_bench [max_level=6]
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <vector>
+
+#include <draco/compression/decode.h>
+
+#include "../tests/shapes.h"
+#include "dbss/decoder/progressive.h"
+#include "dbss/decoder/subdivision.h"
+#include "dbss/encoder/control_mesh_codec.h"
+#include "../tests/decoder/file_builder.h"
+
+#ifdef DBSS_HAVE_OPENMESH
+#include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
+#include <OpenMesh/Tools/Subdivider/Uniform/ModifiedButterFlyT.hh>
+#endif
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+template <class F>
+double best_seconds(F&& f, double budget = 0.5) {
+  double best = 1e30, spent = 0;
+  for (int i = 0; i < 20 && (i < 3 || spent < budget); ++i) {
+    const auto t0 = Clock::now();
+    f();
+    const double s = std::chrono::duration<double>(Clock::now() - t0).count();
+    best = std::min(best, s);
+    spent += s;
+  }
+  return best;
+}
+
+// An icosphere with 1280 triangles (valences 5 and 6), jittered.
+dbss::TriangleMesh control_mesh() {
+  dbss::TriangleMesh m = dbss::test::icosahedron();
+  for (int l = 0; l < 3; ++l) {
+    auto t = dbss::build_topology(static_cast<uint32_t>(m.vertex_count()), m.triangles).value();
+    std::vector<float> p = m.positions;
+    for (uint32_t e = 0; e < t.edge_count(); ++e) {
+      const uint32_t h = t.edge_half[e];
+      const uint32_t a = t.triangles[h], b = t.triangles[dbss::next_half(h)];
+      for (int k = 0; k < 3; ++k) p.push_back(0.5f * (m.positions[3 * a + k] + m.positions[3 * b + k]));
+    }
+    dbss::refine_triangles(t, m.triangles);
+    m.positions = std::move(p);
+  }
+  for (size_t v = 0; v < m.vertex_count(); ++v) {
+    float* p = &m.positions[3 * v];
+    const float r = std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
+    for (int k = 0; k < 3; ++k) p[k] /= r;
+  }
+  return dbss::test::jitter(m, 0.01f);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const int max_level = argc > 1 ? std::atoi(argv[1]) : 6;
+  if (max_level < 3 || max_level > 7) {
+    std::fprintf(stderr, "usage: decode_bench [max_level 3..7]\n");
+    return 1;
+  }
+  const dbss::TriangleMesh control = control_mesh();
+  const auto file = dbss::test::build_file(control, static_cast<uint8_t>(max_level), 30, 0.002f);
+  std::printf("control mesh: %zu vertices, %zu triangles; file with %d levels: %zu bytes\n\n", control.vertex_count(),
+              control.triangle_count(), max_level, file.size());
+  std::printf("%-5s %10s | %-22s | %-22s | %-22s | %-22s | %-22s | %s\n", "level", "triangles", "dbss 1 thread",
+              "dbss 2 threads", "Draco (same mesh)", "OpenMesh butterfly", "memcpy of output", "dbss1/Draco");
+  std::printf("%-5s %10s | %10s %11s | %10s %11s | %10s %11s | %10s %11s | %10s %11s |\n", "", "", "ms", "Mtri/s",
+              "ms", "Mtri/s", "ms", "Mtri/s", "ms", "Mtri/s", "ms", "Mtri/s");
+
+  for (int level = 3; level <= max_level; ++level) {
+    dbss::TriangleMesh out;
+    auto run_dbss = [&](unsigned threads) {
+      dbss::DecoderOptions o;
+      o.threads = threads;
+      dbss::ProgressiveDecoder d(o);
+      d.feed(file);
+      auto v = d.decode(static_cast<uint32_t>(level));
+      if (!v.ok()) std::abort();
+      if (out.positions.empty()) out = v.value().copy();
+    };
+    const double t1 = best_seconds([&] { run_dbss(1); });
+    const double t2 = best_seconds([&] { run_dbss(2); });
+    const double tris = static_cast<double>(out.triangle_count());
+
+    // Draco on the identical final mesh (its defaults: 11-bit positions... we
+    // use 16 bits like the control mesh, speed 5).
+    auto draco_bytes = dbss::encode_control_mesh(out, {16, 5}).value();
+    const double td = best_seconds([&] {
+      draco::DecoderBuffer buf;
+      buf.Init(reinterpret_cast<const char*>(draco_bytes.data()), draco_bytes.size());
+      draco::Decoder dec;
+      auto m = dec.DecodeMeshFromBuffer(&buf);
+      if (!m.ok()) std::abort();
+    });
+
+    double to = 0;
+#ifdef DBSS_HAVE_OPENMESH
+    using OMesh = OpenMesh::TriMesh_ArrayKernelT<>;
+    to = best_seconds([&] {
+      OMesh om;
+      std::vector<OMesh::VertexHandle> hs;
+      for (size_t v = 0; v < control.vertex_count(); ++v)
+        hs.push_back(om.add_vertex(OMesh::Point(control.positions[3 * v], control.positions[3 * v + 1], control.positions[3 * v + 2])));
+      for (size_t f = 0; f < control.triangle_count(); ++f)
+        om.add_face(hs[control.triangles[3 * f]], hs[control.triangles[3 * f + 1]], hs[control.triangles[3 * f + 2]]);
+      OpenMesh::Subdivider::Uniform::ModifiedButterflyT<OMesh> sub;
+      sub.attach(om);
+      sub(static_cast<size_t>(level));
+      sub.detach();
+    }, 1.0);
+#endif
+    std::vector<float> pcopy(out.positions.size());
+    std::vector<uint32_t> tcopy(out.triangles.size());
+    const double tm = best_seconds([&] {
+      std::memcpy(pcopy.data(), out.positions.data(), out.positions.size() * 4);
+      std::memcpy(tcopy.data(), out.triangles.data(), out.triangles.size() * 4);
+    });
+    auto col = [&](double t) { std::printf(" %10.3f %11.1f |", t * 1e3, t > 0 ? tris / t / 1e6 : 0.0); };
+    std::printf("%-5d %10.0f |", level, tris);
+    col(t1);
+    col(t2);
+    col(td);
+    if (to > 0) col(to); else std::printf(" %10s %11s |", "n/a", "n/a");
+    col(tm);
+    std::printf(" %.2fx\n", td / t1);
+  }
+  std::printf("\nratios are speed ratios (higher = dbss faster); one run, best of several repetitions each.\n");
+  return 0;
+}
