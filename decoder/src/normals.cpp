@@ -28,21 +28,27 @@ void odd_normals(const uint32_t* rings, const float* p, uint32_t first_odd, uint
   for (uint32_t e = begin; e < end; ++e, normals += 3) {
     const uint32_t* r = rings + 6 * size_t{e};
     const float* m = p + 3 * (size_t{first_odd} + e);
+    // Vectors from m to each ring vertex, then the cross products summed in
+    // the spec's order: plain binary64 operations, so every build agrees.
+    double d[6][3];
     const uint32_t count = r[4] == kNoHalfEdge ? 4 : 6;
-    const uint32_t pairs = count == 6 ? 6 : 3;
-    double nx = 0, ny = 0, nz = 0;
-    for (uint32_t i = 0; i < pairs; ++i) {
+    for (uint32_t i = 0; i < count; ++i) {
       const float* a = p + 3 * size_t{r[i]};
-      const float* b = p + 3 * size_t{r[(i + 1) % count]};
-      const double ax = double{a[0]} - m[0], ay = double{a[1]} - m[1], az = double{a[2]} - m[2];
-      const double bx = double{b[0]} - m[0], by = double{b[1]} - m[1], bz = double{b[2]} - m[2];
-      nx = nx + (ay * bz - az * by);
-      ny = ny + (az * bx - ax * bz);
-      nz = nz + (ax * by - ay * bx);
+      d[i][0] = double{a[0]} - m[0], d[i][1] = double{a[1]} - m[1], d[i][2] = double{a[2]} - m[2];
+    }
+    double nx = 0, ny = 0, nz = 0;
+    const uint32_t pairs = count == 6 ? 6 : 3;
+    for (uint32_t i = 0; i < pairs; ++i) {
+      const double* a = d[i];
+      const double* b = d[i + 1 == count ? 0 : i + 1];
+      nx = nx + (a[1] * b[2] - a[2] * b[1]);
+      ny = ny + (a[2] * b[0] - a[0] * b[2]);
+      nz = nz + (a[0] * b[1] - a[1] * b[0]);
     }
     const double len = std::sqrt(nx * nx + ny * ny + nz * nz);
     if (len > 0) {
-      normals[0] = nx / len, normals[1] = ny / len, normals[2] = nz / len;
+      const double inv = 1.0 / len;
+      normals[0] = nx * inv, normals[1] = ny * inv, normals[2] = nz * inv;
     } else {
       normals[0] = normals[1] = normals[2] = 0;
     }

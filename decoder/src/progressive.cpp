@@ -20,11 +20,12 @@ struct ProgressiveDecoder::State {
   LevelTopology base_topology;
   std::vector<float> base_positions;
 
-  // The current level: positions always; topology unless it is the file's
-  // last level (nothing finer can be asked for), when only triangles are kept.
+  // The current level: positions and triangles.  Its full topology is built
+  // only when a finer level is asked for; until then the (4x smaller)
+  // topology of the level below is kept instead.
   uint32_t level = 0;
   bool have_current = false;
-  std::optional<LevelTopology> topology;
+  std::optional<LevelTopology> parent;  // topology of level - 1 (level >= 1)
   std::vector<uint32_t> triangles;
   std::vector<float> positions;
 
@@ -66,8 +67,8 @@ struct ProgressiveDecoder::State {
 
   void reset_to_base() {
     level = 0;
-    topology = base_topology;
-    triangles.clear();
+    parent.reset();
+    triangles = base_topology.triangles;
     positions = base_positions;
     have_current = true;
   }
@@ -75,23 +76,17 @@ struct ProgressiveDecoder::State {
   void step() {
     const uint32_t next = level + 1;
     const format::Level& data = reader.level(next);
-    const LevelPlan plan = plan_level(*topology);
+    LevelTopology current = level == 0 ? base_topology : refine_topology(*parent);
+    const LevelPlan plan = plan_level(current);
     std::vector<float> out;
     subdivide_geometry(plan, positions, data.q, data.step, out, threads);
     positions = std::move(out);
-    if (next < reader.header().level_count || options.keep_levels) {
-      topology = refine_topology(*topology);
-    } else {
-      refine_triangles(*topology, triangles);
-      topology.reset();
-    }
+    refine_triangles(current, triangles);
+    parent = std::move(current);
     level = next;
   }
 
-  MeshView view() const {
-    const std::vector<uint32_t>& tris = topology ? topology->triangles : triangles;
-    return {level, positions, tris};
-  }
+  MeshView view() const { return {level, positions, triangles}; }
 };
 
 ProgressiveDecoder::ProgressiveDecoder(const DecoderOptions& options) : s_(std::make_unique<State>(options)) {}
@@ -132,13 +127,13 @@ Result<MeshView> ProgressiveDecoder::decode(uint32_t level) {
     if (!s.have_current || level < s.level) s.reset_to_base();
     while (s.level < level) {
       s.step();
-      if (s.options.keep_levels) {  // keep_levels keeps the topology of every level
+      if (s.options.keep_levels) {
         if (s.kept_positions.empty()) {
           s.kept_positions.push_back(s.base_positions);
           s.kept_triangles.push_back(s.base_topology.triangles);
         }
         s.kept_positions.push_back(s.positions);
-        s.kept_triangles.push_back(s.topology->triangles);
+        s.kept_triangles.push_back(s.triangles);
       }
     }
     return s.view();

@@ -47,7 +47,11 @@ void subdivide_geometry(const LevelPlan& plan, std::span<const float> positions,
   float* p = out.data();
   float* odd = p + 3 * size_t{evens};
   // Pass 1: every odd vertex at its stencil point (normals need all of them).
-  parallel_ranges(odds, threads, [&](uint32_t b, uint32_t e) { apply_stencils(plan.stencils, p, b, e, odd + 3 * size_t{b}); });
+  const Stencils& st = plan.stencils;
+  const uint32_t regular = static_cast<uint32_t>(st.regular_odd.size());
+  const uint32_t other = static_cast<uint32_t>(st.other_odd.size());
+  parallel_ranges(regular, threads, [&](uint32_t b, uint32_t e) { apply_stencils(st, p, b, e, 0, 0, odd); });
+  apply_stencils(st, p, 0, 0, 0, other, odd);
   if (q.empty()) return;
   // Pass 2: normals from the undisplaced level, then the displacements.  The
   // normals of a range are kept aside so no vertex moves before every normal

@@ -66,9 +66,13 @@ TEST_CASE("extraordinary weights: 3/4 plus the s_j sum to 1, symmetric, valences
   // Stencils as built: every row sums to 1 (affine invariance).
   for (const TriangleMesh& m : {test::icosahedron(), test::bipyramid(11), test::planar_grid(5, 4), test::torus(6, 5)}) {
     const Stencils s = build_stencils(topology_of(m));
+    std::vector<uint32_t> index;
+    std::vector<double> weight;
     for (uint32_t e = 0; e < s.size(); ++e) {
+      stencil_terms(s, e, index, weight);
+      REQUIRE(!index.empty());
       double sum = 0;
-      for (uint32_t i = s.offset[e]; i < s.offset[e + 1]; ++i) sum += s.weight[i];
+      for (double w : weight) sum += w;
       REQUIRE(std::abs(sum - 1.0) < 1e-14);
     }
   }
@@ -252,5 +256,23 @@ TEST_CASE("displacement moves odd vertices along the unit normal by q * step") {
     CHECK(a[1] == b[1]);
     CHECK(std::abs(b[2] - a[2]) == Approx(0.5 * std::abs(q[i])));
     if (q[i]) CHECK((b[2] - a[2] > 0) == (q[i] > 0));  // counter-clockwise triangles face +z
+  }
+}
+
+TEST_CASE("the regular fast path gives the same bits as the generic weighted lists") {
+  for (const TriangleMesh& m : {test::jitter(test::torus(9, 7), 0.05f), test::jitter(test::uv_sphere(6, 10), 0.05f),
+                                test::jitter(test::planar_grid(6, 5), 0.1f)}) {
+    LevelTopology t = topology_of(m);
+    t = refine_topology(t);  // mostly regular edges
+    std::vector<float> pos;
+    subdivide_geometry(plan_level(topology_of(m)), m.positions, {}, 0, pos);
+    LevelPlan fast = plan_level(t), slow = plan_level(t);
+    slow.stencils = build_stencils(t, /*all_generic=*/true);
+    REQUIRE(!fast.stencils.regular_odd.empty());
+    REQUIRE(slow.stencils.regular_odd.empty());
+    std::vector<float> a, b;
+    subdivide_geometry(fast, pos, {}, 0, a);
+    subdivide_geometry(slow, pos, {}, 0, b);
+    CHECK(a == b);
   }
 }

@@ -16,11 +16,19 @@
 namespace dbss {
 
 struct Stencils {
-  // Odd vertex e = sum over i in [offset[e], offset[e+1]) of weight[i] * p[index[i]].
-  std::vector<uint32_t> offset;
-  std::vector<uint32_t> index;
-  std::vector<double> weight;
-  uint32_t size() const noexcept { return offset.empty() ? 0 : static_cast<uint32_t>(offset.size() - 1); }
+  uint32_t odd_count = 0;
+  // Most edges of a refined level are regular (both ends interior with
+  // valence 6): their stencil is fixed, so only the 8 vertices are stored,
+  // in the order u, w, c, d, then the wings across w-c, c-u, u-d, d-w.
+  std::vector<uint32_t> regular_odd;    // odd vertex (edge) of each regular stencil
+  std::vector<uint32_t> regular_index;  // 8 per regular stencil
+  // Every other edge: odd vertex other_odd[i] = sum over
+  // j in [other_offset[i], other_offset[i+1]) of other_weight[j] * p[other_index[j]].
+  std::vector<uint32_t> other_odd;
+  std::vector<uint32_t> other_offset;
+  std::vector<uint32_t> other_index;
+  std::vector<double> other_weight;
+  uint32_t size() const noexcept { return odd_count; }
 };
 
 // s_j of the extraordinary rule for valence k in 3..kMaxValence, j in 0..k-1:
@@ -28,10 +36,16 @@ struct Stencils {
 // (k = 3: 5/12, -1/12, -1/12; k = 4: 3/8, 0, -1/8, 0).
 double butterfly_weight(uint32_t k, uint32_t j) noexcept;
 
-// The stencil of every edge of `t`.
-Stencils build_stencils(const LevelTopology& t);
+// The stencil of every edge of `t`.  With `all_generic`, regular edges are
+// stored as weighted lists too (for tests: both forms must agree bit for bit).
+Stencils build_stencils(const LevelTopology& t, bool all_generic = false);
 
-// Writes odd vertex e (3 floats) to odd[3 * (e - begin)] for e in [begin, end).
-void apply_stencils(const Stencils& s, const float* positions, uint32_t begin, uint32_t end, float* odd);
+// One stencil as the ordered (vertex, weight) list the spec defines.
+void stencil_terms(const Stencils& s, uint32_t odd, std::vector<uint32_t>& index, std::vector<double>& weight);
+
+// Evaluates regular stencils [rb, re) and other stencils [ob, oe), writing
+// odd vertex e's 3 floats to odd[3 * e].
+void apply_stencils(const Stencils& s, const float* positions, uint32_t rb, uint32_t re, uint32_t ob, uint32_t oe,
+                    float* odd);
 
 }  // namespace dbss

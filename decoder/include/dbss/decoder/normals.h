@@ -17,7 +17,7 @@ namespace dbss {
 std::vector<uint32_t> build_odd_rings(const LevelTopology& t);
 
 // normal = sum over consecutive ring pairs (closed for 6, open for 4) of
-// (r_i - m) x (r_{i+1} - m) in binary64, divided by its length; zero when the
+// (r_i - m) x (r_{i+1} - m) in binary64, times 1 / its length; zero when the
 // length is zero.  Writes 3 doubles per odd vertex e in [begin, end).
 void odd_normals(const uint32_t* rings, const float* positions, uint32_t first_odd, uint32_t begin, uint32_t end,
                  double* normals);
