@@ -1,7 +1,8 @@
 // Container round trip, the README's main job until the encoder lands:
 // a genus-1 control mesh (the paper's 50-vertex torus) through Draco into a
-// .dbss with three levels of zero displacements, written atomically, read
-// back through the push reader and the control mesh decoded again.
+// .dbss with three levels of zero displacements (plain butterfly surface),
+// written atomically, read back through the push reader and every level
+// decoded by the progressive decoder.
 //
 // usage: dbss-container-example OUT.dbss
 #include <cmath>
@@ -9,6 +10,7 @@
 #include <numbers>
 
 #include "dbss/decoder/control_mesh.h"
+#include "dbss/decoder/progressive.h"
 #include "dbss/encoder/control_mesh_codec.h"
 #include "dbss/format/reader.h"
 #include "dbss/format/writer.h"
@@ -89,19 +91,22 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "%s: %s\n", out, r.status().to_string().c_str());
     return 2;
   }
-  auto decoded = dbss::decode_control_mesh(r.control_payload(), 1 << 20, 1 << 20);
-  if (!decoded.ok()) {
-    std::fprintf(stderr, "%s\n", decoded.status().to_string().c_str());
-    return 2;
-  }
   std::printf("wrote %s: %zu bytes (control mesh %zu bytes of Draco)\n", out, file.value().size(),
               r.control_payload().size());
-  std::printf("control mesh decoded: %zu vertices, %zu triangles\n", decoded.value().vertex_count(),
-              decoded.value().triangle_count());
-  for (uint32_t l = 1; l <= r.levels_ready(); ++l) {
-    const auto counts = dbss::format::counts_at_level(control, l);
-    std::printf("level %u: %zu odd vertices, %llu vertices, %llu triangles\n", l, r.level(l).q.size(),
-                static_cast<unsigned long long>(counts->vertices), static_cast<unsigned long long>(counts->triangles));
+  // Decode every level with the progressive decoder, as a viewer would.
+  dbss::ProgressiveDecoder decoder;
+  if (auto s = decoder.feed(file.value()); !s.ok()) {
+    std::fprintf(stderr, "%s: %s\n", out, s.to_string().c_str());
+    return 2;
+  }
+  for (uint32_t l = 0; static_cast<int>(l) <= decoder.ready_level(); ++l) {
+    auto mesh = decoder.decode(l);
+    if (!mesh.ok()) {
+      std::fprintf(stderr, "%s: level %u: %s\n", out, l, mesh.status().to_string().c_str());
+      return 2;
+    }
+    std::printf("level %u: %zu vertices (%zu odd), %zu triangles\n", l, mesh.value().vertex_count(),
+                l == 0 ? size_t{0} : r.level(l).q.size(), mesh.value().triangle_count());
   }
   return 0;
 }

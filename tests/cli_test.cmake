@@ -14,7 +14,7 @@ function(expect_run expected_rc must_contain)
 endfunction()
 
 set(f ${WORK}/torus.dbss)
-expect_run(0 "level 3: 2400 odd vertices" ${EXAMPLE} ${f})
+expect_run(0 "level 3: 3200 vertices \\(2400 odd\\), 6400 triangles" ${EXAMPLE} ${f})
 expect_run(0 "complete, every chunk verified" ${DBSS} info ${f})
 expect_run(0 "\"complete\": true" ${DBSS} info ${f} --json)
 expect_run(0 "usage: dbss info" ${DBSS} info --help)
