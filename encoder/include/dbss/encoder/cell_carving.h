@@ -1,0 +1,47 @@
+// Cell carving (paper, section 3.1, Steps 1-5): a voxel grid around the
+// points, empty cells carved away from the outside in through face
+// neighbours; what stays is the solid whose outer faces become the shell.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "dbss/encoder/point_input.h"
+
+namespace dbss {
+
+struct CellGrid {
+  // kInside: empty but not reachable from outside; kFilled: air made solid
+  // to keep the shell manifold.
+  enum State : uint8_t { kAir = 0, kOccupied = 1, kInside = 2, kFilled = 3 };
+  std::array<int, 3> n{};            // cells per axis, two padding layers of air on every side included
+  std::array<double, 3> origin{};    // corner of cell (0, 0, 0), model units
+  double cell = 0;                   // cube side, model units
+  std::vector<uint8_t> state;        // n[0] * n[1] * n[2], x fastest
+  size_t index(int i, int j, int k) const { return (size_t(k) * n[1] + j) * n[0] + i; }
+  bool solid(int i, int j, int k) const { return state[index(i, j, k)] != kAir; }
+  size_t solid_count() const;
+};
+
+struct CarvingStats {
+  int grid = 0;                 // cells along the longest side of the bounding box
+  size_t occupied = 0;          // cells holding points
+  size_t solid = 0;             // cells left after carving
+  size_t repaired = 0;          // air cells filled to remove edge/vertex-only contacts
+};
+
+// Carves a grid of `grid` cubic cells along the longest side of the points'
+// bounding box.  Carving runs against the occupied cells closed
+// morphologically (grown by one cell, carved, shrunk back by one cell), so it
+// cannot leak through gaps of up to two cells in the sampling.  Afterwards the solid is made well-composed: wherever solid
+// cells would meet only along an edge or at a corner (which makes the shell
+// non-manifold), one of the air cells there is filled, and the carving is
+// redone so no enclosed air remains.  grid in 2..1024.
+CellGrid carve(const PointCloud& points, int grid, CarvingStats* stats = nullptr);
+
+// The finest grid whose carving stays outside the surface, from the points'
+// spacing (see the comment in cell_carving.cpp), between 8 and max_grid.
+int choose_grid(const PointCloud& points, int max_grid = 256);
+
+}  // namespace dbss

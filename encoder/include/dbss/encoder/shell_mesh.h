@@ -1,0 +1,32 @@
+// The carved solid's outer faces as a closed triangle mesh (paper, 3.1).
+#pragma once
+
+#include "dbss/decoder/mesh.h"
+#include "dbss/encoder/cell_carving.h"
+#include "dbss/format/status.h"
+
+namespace dbss {
+
+// Every face between a solid cell and an air cell becomes a quad with its
+// normal towards the air, split into two triangles; vertices are grid
+// corners.  The paper's collapse types then simplify cells with many air
+// faces: five air faces (Type 1) collapse the four air corners into one;
+// four air faces not forming a ribbon (Type 2) collapse the two air corners;
+// three air faces around one corner (Type 3) cut that corner off.  A
+// collapse is skipped where it would break the manifold.  Because carve()
+// leaves a well-composed solid, the result is a closed, oriented 2-manifold;
+// it is checked, and a failed check is an internal error.
+Result<TriangleMesh> triangulate_shell(const CellGrid& grid, bool collapse_types = true);
+
+// Topological facts about a mesh, from the decoder's own topology builder.
+struct MeshInfo {
+  bool manifold = false;  // oriented 2-manifold, every edge in 1 or 2 triangles
+  bool closed = false;    // no boundary edge
+  uint32_t components = 0;
+  int64_t euler = 0;      // V - E + F
+  int64_t genus = 0;      // sum over closed components: (2 * components - euler) / 2
+  Status status;          // why it is not manifold
+};
+MeshInfo mesh_info(const TriangleMesh& mesh);
+
+}  // namespace dbss

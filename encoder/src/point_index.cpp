@@ -1,0 +1,60 @@
+#include "dbss/encoder/point_index.h"
+
+#include <algorithm>
+#include <cmath>
+#include <nanoflann.hpp>
+
+namespace dbss {
+
+namespace {
+struct CloudAdaptor {
+  const PointCloud& pc;
+  size_t kdtree_get_point_count() const { return pc.size(); }
+  float kdtree_get_pt(size_t i, size_t dim) const { return pc.xyz[3 * i + dim]; }
+  template <class B>
+  bool kdtree_get_bbox(B&) const { return false; }
+};
+using Tree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<float, CloudAdaptor>, CloudAdaptor, 3, uint32_t>;
+}  // namespace
+
+struct PointIndex::Tree {
+  CloudAdaptor adaptor;
+  dbss::Tree tree;
+  explicit Tree(const PointCloud& pc) : adaptor{pc}, tree(3, adaptor, nanoflann::KDTreeSingleIndexAdaptorParams(16)) {}
+};
+
+PointIndex::PointIndex(const PointCloud& points) : points_(points), tree_(std::make_unique<Tree>(points)) {}
+PointIndex::~PointIndex() = default;
+
+uint32_t PointIndex::nearest(const float q[3]) const {
+  uint32_t i = 0;
+  float d = 0;
+  tree_->tree.knnSearch(q, 1, &i, &d);
+  return i;
+}
+
+size_t PointIndex::nearest_k(const float q[3], size_t k, uint32_t* indices, float* dist2) const {
+  return tree_->tree.knnSearch(q, k, indices, dist2);
+}
+
+double point_spacing(const PointIndex& index, size_t k, double quantile) {
+  const PointCloud& pc = index.points();
+  const size_t n = pc.size();
+  if (n <= k) return 0;
+  const size_t samples = std::min<size_t>(n, 4096);
+  std::vector<double> d;
+  d.reserve(samples);
+  std::vector<uint32_t> idx(k + 1);
+  std::vector<float> dist(k + 1);
+  for (size_t s = 0; s < samples; ++s) {
+    const size_t i = s * n / samples;
+    const size_t got = index.nearest_k(&pc.xyz[3 * i], k + 1, idx.data(), dist.data());
+    if (got == k + 1) d.push_back(std::sqrt(double{dist[k]}));
+  }
+  if (d.empty()) return 0;
+  const size_t at = std::min(d.size() - 1, static_cast<size_t>(quantile * (d.size() - 1)));
+  std::nth_element(d.begin(), d.begin() + at, d.end());
+  return d[at];
+}
+
+}  // namespace dbss

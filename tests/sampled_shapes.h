@@ -1,0 +1,98 @@
+// Point clouds sampled from shapes of known genus, given by signed distance
+// functions; built in the tests, no data files needed.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <random>
+#include <vector>
+
+#include "dbss/encoder/point_input.h"
+
+namespace dbss::test {
+
+using Sdf = std::function<double(double, double, double)>;
+
+inline double torus_sdf(double x, double y, double z, double cx, double cy, double R, double r) {
+  const double q = std::hypot(x - cx, y - cy) - R;
+  return std::hypot(q, z) - r;
+}
+inline double sphere_sdf(double x, double y, double z, double cx, double cy, double cz, double r) {
+  return std::sqrt((x - cx) * (x - cx) + (y - cy) * (y - cy) + (z - cz) * (z - cz)) - r;
+}
+inline double box_sdf(double x, double y, double z, double cx, double cy, double cz, double hx, double hy, double hz) {
+  const double qx = std::abs(x - cx) - hx, qy = std::abs(y - cy) - hy, qz = std::abs(z - cz) - hz;
+  const double ox = std::max(qx, 0.0), oy = std::max(qy, 0.0), oz = std::max(qz, 0.0);
+  return std::sqrt(ox * ox + oy * oy + oz * oz) + std::min(std::max({qx, qy, qz}), 0.0);
+}
+
+// `count` points on the zero set of `sdf` inside [lo, hi]^3: random starts
+// projected by Newton steps along the numerical gradient.
+inline PointCloud sample_sdf(const Sdf& sdf, double lo, double hi, size_t count, uint32_t seed = 7) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(lo, hi);
+  PointCloud pc;
+  const double h = 1e-5 * (hi - lo), tol = 1e-6 * (hi - lo);
+  size_t attempts = 0;
+  while (pc.size() < count && attempts++ < count * 50) {
+    double p[3] = {u(rng), u(rng), u(rng)};
+    for (int it = 0; it < 30; ++it) {
+      const double d = sdf(p[0], p[1], p[2]);
+      if (std::abs(d) < tol) break;
+      double g[3];
+      for (int a = 0; a < 3; ++a) {
+        double q[3] = {p[0], p[1], p[2]};
+        q[a] += h;
+        g[a] = (sdf(q[0], q[1], q[2]) - d) / h;
+      }
+      const double gg = g[0] * g[0] + g[1] * g[1] + g[2] * g[2];
+      if (gg < 1e-12) break;
+      for (int a = 0; a < 3; ++a) p[a] -= d * g[a] / gg;
+    }
+    if (std::abs(sdf(p[0], p[1], p[2])) < 10 * tol)
+      for (double v : p) pc.xyz.push_back(static_cast<float>(v));
+  }
+  return pc;
+}
+
+struct Shape {
+  const char* name;
+  Sdf sdf;
+  double lo, hi;
+  uint32_t components;
+  int64_t genus;
+};
+
+inline std::vector<Shape> genus_shapes() {
+  using namespace std::placeholders;
+  return {
+      {"sphere", [](double x, double y, double z) { return sphere_sdf(x, y, z, 0, 0, 0, 1); }, -1.2, 1.2, 1, 0},
+      {"torus", [](double x, double y, double z) { return torus_sdf(x, y, z, 0, 0, 1, 0.35); }, -1.5, 1.5, 1, 1},
+      {"double torus",
+       [](double x, double y, double z) {
+         return std::min(torus_sdf(x, y, z, -0.8, 0, 1, 0.3), torus_sdf(x, y, z, 0.8, 0, 1, 0.3));
+       },
+       -2.2, 2.2, 1, 2},
+      {"triple torus",
+       [](double x, double y, double z) {
+         return std::min({torus_sdf(x, y, z, -1.6, 0, 1, 0.3), torus_sdf(x, y, z, 0, 0, 1, 0.3),
+                          torus_sdf(x, y, z, 1.6, 0, 1, 0.3)});
+       },
+       -3, 3, 1, 3},
+      {"cup (U shape)",
+       [](double x, double y, double z) {
+         return std::min({box_sdf(x, y, z, -0.8, 0, 0.2, 0.2, 0.5, 0.8), box_sdf(x, y, z, 0.8, 0, 0.2, 0.2, 0.5, 0.8),
+                          box_sdf(x, y, z, 0, 0, -0.8, 1.0, 0.5, 0.2)});
+       },
+       -1.2, 1.2, 1, 0},
+      {"two spheres",
+       [](double x, double y, double z) {
+         return std::min(sphere_sdf(x, y, z, -1.2, 0, 0, 0.7), sphere_sdf(x, y, z, 1.2, 0, 0, 0.7));
+       },
+       -2.1, 2.1, 2, 0},
+      {"thin plate", [](double x, double y, double z) { return box_sdf(x, y, z, 0, 0, 0, 1, 0.7, 0.04); }, -1.1, 1.1, 1, 0},
+  };
+}
+
+}  // namespace dbss::test
