@@ -8,6 +8,7 @@ packages=(
   clang libclang-rt-14-dev                       # second compiler, sanitizers, libFuzzer
   libdraco-dev libzstd-dev                       # container payloads (decoder)
   libnanoflann-dev libeigen3-dev                 # KD-tree queries, quadrics (encoder)
+  libopenmesh-dev                                # QEM decimation (encoder); differential tests
   catch2                                         # tests (Catch2 v2)
 )
 

@@ -1,0 +1,45 @@
+// Encoder I: points -> cells -> shell -> shrink-wrapped -> simplified ->
+// control mesh.  Every stage's result is kept so it can be dumped and tested.
+#pragma once
+
+#include <cstdint>
+
+#include "dbss/decoder/mesh.h"
+#include "dbss/encoder/cell_carving.h"
+#include "dbss/encoder/point_input.h"
+#include "dbss/encoder/shell_mesh.h"
+#include "dbss/encoder/shrink_wrap.h"
+#include "dbss/encoder/simplify.h"
+#include "dbss/format/status.h"
+
+namespace dbss {
+
+struct ControlMeshOptions {
+  int grid = 0;                // cells along the longest side; 0 = choose_grid()
+  uint32_t control_faces = 0;  // 0 = default_control_faces()
+  ShrinkWrapOptions shrink_wrap;
+};
+
+struct StageTimes {
+  double grid = 0, carve = 0, triangulate = 0, shrink_wrap = 0, simplify = 0, project = 0;  // seconds
+};
+
+struct ControlMeshStages {
+  CarvingStats carving;
+  CellGrid cells;
+  TriangleMesh shell;       // triangulated air faces
+  TriangleMesh wrapped;     // after shrink-wrapping
+  TriangleMesh simplified;  // after QEM
+  TriangleMesh control;     // simplified vertices projected onto the points
+  MeshInfo shell_info;
+  ShrinkWrapStats wrap_stats;
+  SimplifyStats simplify_stats;
+  size_t projection_skipped = 0;  // control vertices left off the points to avoid a fold
+  StageTimes seconds;
+};
+
+// Runs every stage.  Fails with invalid_argument for unusable points and
+// internal if a stage breaks the closed-manifold invariant (a bug).
+Result<ControlMeshStages> build_control_mesh(const PointCloud& points, const ControlMeshOptions& options = {});
+
+}  // namespace dbss

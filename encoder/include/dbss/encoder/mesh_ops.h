@@ -1,0 +1,37 @@
+// Small geometric helpers the reconstruction stages share.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "dbss/decoder/mesh.h"
+
+namespace dbss {
+
+// Vertex neighbours as CSR arrays (each neighbour once).
+struct Adjacency {
+  std::vector<uint32_t> offset;  // vertex_count + 1
+  std::vector<uint32_t> index;
+};
+Adjacency vertex_adjacency(const TriangleMesh& m);
+
+// Triangles around each vertex as CSR arrays.
+Adjacency vertex_triangles(const TriangleMesh& m);
+
+// Whether moving vertex v to `to` keeps every triangle around it facing
+// within 90 degrees of where it faced before (no triangle turns over).
+bool move_keeps_orientation(const TriangleMesh& m, const Adjacency& vertex_tris, uint32_t v, const float to[3]);
+
+// Area-weighted unit vertex normals (zero for isolated or degenerate fans).
+std::vector<std::array<double, 3>> vertex_normals(const TriangleMesh& m);
+
+// Edges whose two triangles fold back onto each other: the angle between
+// their normals is over `max_angle_degrees` (a fold-over).  Closed manifold
+// input expected.
+size_t count_foldovers(const TriangleMesh& m, double max_angle_degrees = 150);
+
+// Winding-number inside test of a closed, outward-oriented mesh.
+bool inside_mesh(const TriangleMesh& m, const std::array<double, 3>& p);
+
+}  // namespace dbss

@@ -1,0 +1,68 @@
+#include "dbss/encoder/control_mesh.h"
+
+#include <chrono>
+#include <string>
+
+#include "dbss/encoder/point_index.h"
+#include "dbss/encoder/projection.h"
+#include "dbss/encoder/shell_mesh.h"
+
+namespace dbss {
+
+namespace {
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+Status check_stage(const TriangleMesh& m, const MeshInfo& want, const char* stage) {
+  const MeshInfo got = mesh_info(m);
+  if (!got.manifold || !got.closed || got.components != want.components || got.genus != want.genus)
+    return Status(ErrorCode::internal, std::string(stage) + " changed the topology: " + std::to_string(got.components) +
+                                           " components of genus " + std::to_string(got.genus) + " (manifold " +
+                                           std::to_string(got.manifold) + ", closed " + std::to_string(got.closed) +
+                                           "), expected " + std::to_string(want.components) + " of genus " +
+                                           std::to_string(want.genus));
+  return {};
+}
+}  // namespace
+
+Result<ControlMeshStages> build_control_mesh(const PointCloud& points, const ControlMeshOptions& o) {
+  ControlMeshStages s;
+  auto t = Clock::now();
+  const PointIndex index(points);
+  const int grid = o.grid > 0 ? o.grid : choose_grid(points);
+  s.seconds.grid = since(t);
+
+  t = Clock::now();
+  s.cells = carve(points, grid, &s.carving);
+  s.seconds.carve = since(t);
+
+  t = Clock::now();
+  auto shell = triangulate_shell(s.cells);
+  if (!shell.ok()) return shell.status();
+  s.shell = std::move(shell).value();
+  s.shell_info = mesh_info(s.shell);
+  s.seconds.triangulate = since(t);
+
+  t = Clock::now();
+  s.wrapped = s.shell;
+  s.wrap_stats = shrink_wrap(s.wrapped, index, o.shrink_wrap);
+  s.seconds.shrink_wrap = since(t);
+  if (Status st = check_stage(s.wrapped, s.shell_info, "shrink-wrapping"); !st.ok()) return st;
+
+  t = Clock::now();
+  const uint32_t target = o.control_faces ? o.control_faces
+                                          : default_control_faces(static_cast<uint32_t>(s.shell.triangle_count()), s.shell_info.genus);
+  auto simplified = simplify_mesh(s.wrapped, target, &s.simplify_stats);
+  if (!simplified.ok()) return simplified.status();
+  s.simplified = std::move(simplified).value();
+  s.seconds.simplify = since(t);
+  if (Status st = check_stage(s.simplified, s.shell_info, "simplification"); !st.ok()) return st;
+
+  t = Clock::now();
+  s.control = s.simplified;
+  s.projection_skipped = project_to_points(s.control, index);
+  s.seconds.project = since(t);
+  return s;
+}
+
+}  // namespace dbss

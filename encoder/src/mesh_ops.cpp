@@ -1,0 +1,118 @@
+#include "dbss/encoder/mesh_ops.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <numbers>
+
+namespace dbss {
+
+namespace {
+using V3 = std::array<double, 3>;
+V3 pos(const TriangleMesh& m, uint32_t v) { return {m.positions[3 * v], m.positions[3 * v + 1], m.positions[3 * v + 2]}; }
+V3 sub(V3 a, V3 b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+V3 cross(V3 a, V3 b) { return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]}; }
+double dot(V3 a, V3 b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+V3 face_normal(const TriangleMesh& m, size_t f) {
+  const V3 a = pos(m, m.triangles[3 * f]), b = pos(m, m.triangles[3 * f + 1]), c = pos(m, m.triangles[3 * f + 2]);
+  return cross(sub(b, a), sub(c, a));
+}
+}  // namespace
+
+Adjacency vertex_adjacency(const TriangleMesh& m) {
+  const size_t n = m.vertex_count();
+  std::vector<std::pair<uint32_t, uint32_t>> pairs;
+  pairs.reserve(m.triangles.size() * 2);
+  for (size_t f = 0; f < m.triangle_count(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      const uint32_t a = m.triangles[3 * f + k], b = m.triangles[3 * f + (k + 1) % 3];
+      pairs.push_back({a, b});
+      pairs.push_back({b, a});
+    }
+  std::sort(pairs.begin(), pairs.end());
+  pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+  Adjacency adj;
+  adj.offset.assign(n + 1, 0);
+  for (auto& p : pairs) ++adj.offset[p.first + 1];
+  for (size_t v = 0; v < n; ++v) adj.offset[v + 1] += adj.offset[v];
+  adj.index.resize(pairs.size());
+  for (size_t i = 0; i < pairs.size(); ++i) adj.index[i] = pairs[i].second;
+  return adj;
+}
+
+Adjacency vertex_triangles(const TriangleMesh& m) {
+  Adjacency a;
+  a.offset.assign(m.vertex_count() + 1, 0);
+  for (uint32_t v : m.triangles) ++a.offset[v + 1];
+  for (size_t v = 0; v < m.vertex_count(); ++v) a.offset[v + 1] += a.offset[v];
+  a.index.resize(m.triangles.size());
+  std::vector<uint32_t> fill(a.offset.begin(), a.offset.end() - 1);
+  for (size_t c = 0; c < m.triangles.size(); ++c) a.index[fill[m.triangles[c]]++] = static_cast<uint32_t>(c / 3);
+  return a;
+}
+
+bool move_keeps_orientation(const TriangleMesh& m, const Adjacency& vt, uint32_t v, const float to[3]) {
+  for (uint32_t i = vt.offset[v]; i < vt.offset[v + 1]; ++i) {
+    const uint32_t f = vt.index[i];
+    V3 before[3], after[3];
+    for (int k = 0; k < 3; ++k) {
+      const uint32_t w = m.triangles[3 * size_t{f} + k];
+      before[k] = pos(m, w);
+      after[k] = w == v ? V3{to[0], to[1], to[2]} : before[k];
+    }
+    const V3 n0 = cross(sub(before[1], before[0]), sub(before[2], before[0]));
+    const V3 n1 = cross(sub(after[1], after[0]), sub(after[2], after[0]));
+    if (dot(n0, n1) <= 0) return false;
+  }
+  return true;
+}
+
+std::vector<std::array<double, 3>> vertex_normals(const TriangleMesh& m) {
+  std::vector<V3> n(m.vertex_count(), V3{0, 0, 0});
+  for (size_t f = 0; f < m.triangle_count(); ++f) {
+    const V3 fn = face_normal(m, f);
+    for (int k = 0; k < 3; ++k)
+      for (int a = 0; a < 3; ++a) n[m.triangles[3 * f + k]][a] += fn[a];
+  }
+  for (auto& v : n) {
+    const double l = std::sqrt(dot(v, v));
+    if (l > 0)
+      for (double& x : v) x /= l;
+  }
+  return n;
+}
+
+size_t count_foldovers(const TriangleMesh& m, double max_angle_degrees) {
+  std::map<std::pair<uint32_t, uint32_t>, size_t> first;
+  const double limit = std::cos(max_angle_degrees * std::numbers::pi / 180);
+  size_t folds = 0;
+  for (size_t f = 0; f < m.triangle_count(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      const uint32_t a = m.triangles[3 * f + k], b = m.triangles[3 * f + (k + 1) % 3];
+      auto it = first.find({b, a});
+      if (it == first.end()) {
+        first[{a, b}] = f;
+        continue;
+      }
+      const V3 n1 = face_normal(m, f), n2 = face_normal(m, it->second);
+      const double l = std::sqrt(dot(n1, n1) * dot(n2, n2));
+      if (l > 0 && dot(n1, n2) / l < limit) ++folds;
+    }
+  return folds;
+}
+
+bool inside_mesh(const TriangleMesh& m, const std::array<double, 3>& p) {
+  // Sum of signed solid angles (Van Oosterom-Strackee): 4π inside, 0 outside.
+  double total = 0;
+  for (size_t f = 0; f < m.triangle_count(); ++f) {
+    const V3 a = sub(pos(m, m.triangles[3 * f]), p), b = sub(pos(m, m.triangles[3 * f + 1]), p),
+             c = sub(pos(m, m.triangles[3 * f + 2]), p);
+    const double la = std::sqrt(dot(a, a)), lb = std::sqrt(dot(b, b)), lc = std::sqrt(dot(c, c));
+    const double num = dot(a, cross(b, c));
+    const double den = la * lb * lc + dot(a, b) * lc + dot(b, c) * la + dot(c, a) * lb;
+    total += 2 * std::atan2(num, den);
+  }
+  return total > 2 * std::numbers::pi;
+}
+
+}  // namespace dbss

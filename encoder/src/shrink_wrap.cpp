@@ -1,0 +1,78 @@
+#include "dbss/encoder/shrink_wrap.h"
+
+#include <cmath>
+
+#include "dbss/encoder/mesh_ops.h"
+
+namespace dbss {
+
+ShrinkWrapStats shrink_wrap(TriangleMesh& m, const PointIndex& index, const ShrinkWrapOptions& o) {
+  const PointCloud& pc = index.points();
+  const Adjacency adj = vertex_adjacency(m);
+  const size_t n = m.vertex_count();
+  double mean_edge = 0;
+  for (size_t v = 0; v < n; ++v)
+    for (uint32_t i = adj.offset[v]; i < adj.offset[v + 1]; ++i) {
+      const uint32_t w = adj.index[i];
+      double d2 = 0;
+      for (int a = 0; a < 3; ++a) d2 += std::pow(m.positions[3 * v + a] - m.positions[3 * w + a], 2);
+      mean_edge += std::sqrt(d2);
+    }
+  mean_edge /= std::max<size_t>(1, adj.index.size());
+
+  ShrinkWrapStats stats;
+  const Adjacency vt = vertex_triangles(m);
+  for (int it = 0; it < o.max_iterations; ++it) {
+    const auto normals = vertex_normals(m);
+    double moved = 0;
+    // Gauss-Seidel: each vertex moves in turn, and a move that would turn a
+    // triangle over is shortened (halved up to three times) or skipped.
+    for (size_t v = 0; v < n; ++v) {
+      const float* p = &m.positions[3 * v];
+      // Projection: part of the way to the closest point.
+      const uint32_t c = index.nearest(p);
+      double q[3];
+      for (int a = 0; a < 3; ++a) q[a] = p[a] + o.step * (pc.xyz[3 * c + a] - p[a]);
+      // Smoothing: towards the neighbours' average within the tangent plane
+      // only, so triangles even out without the mesh shrinking away.
+      double avg[3] = {0, 0, 0};
+      const uint32_t deg = std::max<uint32_t>(1, adj.offset[v + 1] - adj.offset[v]);
+      for (uint32_t i = adj.offset[v]; i < adj.offset[v + 1]; ++i)
+        for (int a = 0; a < 3; ++a) avg[a] += m.positions[3 * adj.index[i] + a];
+      double lap[3];
+      for (int a = 0; a < 3; ++a) lap[a] = avg[a] / deg - p[a];
+      const auto& nv = normals[v];
+      // The first iterations smooth fully: the voxel staircase has steps
+      // that tangential relaxation alone would fold instead of flatten.
+      const double along = it < o.rounding_iterations ? 0.0 : lap[0] * nv[0] + lap[1] * nv[1] + lap[2] * nv[2];
+      for (int a = 0; a < 3; ++a) q[a] += o.smoothing * (lap[a] - along * nv[a]);
+      for (int tries = 0; tries < 4; ++tries) {
+        const float to[3] = {static_cast<float>(q[0]), static_cast<float>(q[1]), static_cast<float>(q[2])};
+        if (move_keeps_orientation(m, vt, static_cast<uint32_t>(v), to)) {
+          double d2 = 0;
+          for (int a = 0; a < 3; ++a) d2 += (to[a] - p[a]) * double(to[a] - p[a]);
+          moved += std::sqrt(d2);
+          for (int a = 0; a < 3; ++a) m.positions[3 * v + a] = to[a];
+          break;
+        }
+        for (int a = 0; a < 3; ++a) q[a] = 0.5 * (q[a] + p[a]);
+      }
+    }
+    stats.iterations = it + 1;
+    if (moved / std::max<size_t>(1, n) < o.tolerance * mean_edge) break;
+  }
+  double sum = 0, worst = 0;
+  for (size_t v = 0; v < n; ++v) {
+    const float* p = &m.positions[3 * v];
+    const uint32_t c = index.nearest(p);
+    double d2 = 0;
+    for (int a = 0; a < 3; ++a) d2 += std::pow(pc.xyz[3 * c + a] - p[a], 2);
+    sum += std::sqrt(d2);
+    worst = std::max(worst, std::sqrt(d2));
+  }
+  stats.mean_distance = sum / std::max<size_t>(1, n);
+  stats.max_distance = worst;
+  return stats;
+}
+
+}  // namespace dbss
