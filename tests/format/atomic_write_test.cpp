@@ -1,0 +1,57 @@
+#include <catch2/catch.hpp>
+
+#include <filesystem>
+
+#include "samples.h"
+
+using namespace dbss;
+using namespace dbss::format;
+namespace fs = std::filesystem;
+
+namespace {
+fs::path scratch(const char* name) {
+  const fs::path d = fs::temp_directory_path() / ("dbss-test-" + std::to_string(::getpid()) + "-" + name);
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d;
+}
+size_t entries(const fs::path& d) { return static_cast<size_t>(std::distance(fs::directory_iterator(d), fs::directory_iterator())); }
+}  // namespace
+
+TEST_CASE("write_file_atomic writes, replaces, and leaves nothing else behind") {
+  const fs::path d = scratch("write");
+  const std::string path = (d / "a.dbss").string();
+  const auto one = test::small_file(), two = test::big_file();
+  REQUIRE(write_file_atomic(path, one).ok());
+  CHECK(read_file(path).value() == one);
+  REQUIRE(write_file_atomic(path, two).ok());
+  CHECK(read_file(path).value() == two);
+  CHECK(entries(d) == 1);
+  fs::remove_all(d);
+}
+
+TEST_CASE("write_file_atomic failures name the path and keep the old file") {
+  const fs::path d = scratch("fail");
+  const std::string missing = (d / "no" / "such" / "dir" / "x.dbss").string();
+  const Status s = write_file_atomic(missing, test::small_file());
+  CHECK(s.code() == ErrorCode::io);
+  CHECK(s.message().find(missing) != std::string::npos);
+  CHECK(entries(d) == 0);
+  // A directory in the way is refused and untouched.
+  fs::create_directory(d / "dir.dbss");
+  const Status t = write_file_atomic((d / "dir.dbss").string(), test::small_file());
+  CHECK(t.code() == ErrorCode::io);
+  CHECK(fs::is_directory(d / "dir.dbss"));
+  CHECK(entries(d) == 1);
+  fs::remove_all(d);
+}
+
+TEST_CASE("read_file names the file and refuses directories and oversize files") {
+  const fs::path d = scratch("read");
+  CHECK(read_file((d / "absent").string()).status().code() == ErrorCode::io);
+  CHECK(read_file((d / "absent").string()).status().message().find("absent") != std::string::npos);
+  CHECK(read_file(d.string()).status().code() == ErrorCode::io);
+  REQUIRE(write_file_atomic((d / "f").string(), test::small_file()).ok());
+  CHECK(read_file((d / "f").string(), 10).status().code() == ErrorCode::limit_exceeded);
+  fs::remove_all(d);
+}

@@ -1,0 +1,126 @@
+// Limits are checked before anything is allocated for a declared size.  The
+// global operator new of this test executable records the largest single
+// allocation while a probe is armed.
+#include <catch2/catch.hpp>
+
+#include <atomic>
+#include <cstdlib>
+#include <new>
+
+#include "dbss/format/crc32c.h"
+#include "samples.h"
+
+namespace {
+std::atomic<bool> g_armed{false};
+std::atomic<size_t> g_largest{0};
+}  // namespace
+
+void* operator new(size_t n) {
+  if (g_armed.load(std::memory_order_relaxed)) {
+    size_t seen = g_largest.load();
+    while (n > seen && !g_largest.compare_exchange_weak(seen, n)) {}
+  }
+  if (void* p = std::malloc(n ? n : 1)) return p;
+  throw std::bad_alloc();
+}
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete(void* p, size_t) noexcept { std::free(p); }
+
+using namespace dbss;
+using namespace dbss::format;
+
+namespace {
+struct Probe {
+  Probe() { g_largest = 0, g_armed = true; }
+  ~Probe() { g_armed = false; }
+  size_t largest() const { return g_largest.load(); }
+};
+
+// Re-frames a chunk with a correct CRC after its data was edited in place.
+void fix_crc(std::vector<uint8_t>& file, size_t chunk_offset) {
+  const uint32_t length = file[chunk_offset] | file[chunk_offset + 1] << 8 | file[chunk_offset + 2] << 16 |
+                          uint32_t{file[chunk_offset + 3]} << 24;
+  const uint32_t crc = crc32c(std::span<const uint8_t>(file.data() + chunk_offset, 8 + length));
+  for (int i = 0; i < 4; ++i) file[chunk_offset + 8 + length + i] = static_cast<uint8_t>(crc >> (8 * i));
+}
+void put_u32(std::vector<uint8_t>& f, size_t at, uint32_t v) {
+  for (int i = 0; i < 4; ++i) f[at + i] = static_cast<uint8_t>(v >> (8 * i));
+}
+void put_u64(std::vector<uint8_t>& f, size_t at, uint64_t v) {
+  for (int i = 0; i < 8; ++i) f[at + i] = static_cast<uint8_t>(v >> (8 * i));
+}
+constexpr size_t kHeadAt = 8, kHeadData = 16, kIndxAt = 8 + 12 + 56, kIndxData = kIndxAt + 8;
+}  // namespace
+
+TEST_CASE("a small file declaring huge counts fails at the header, allocating little") {
+  auto file = test::small_file();
+  REQUIRE(file.size() < 2048);
+  // 2^32 - 1 triangles (with matching edges and vertices) and 30 levels.
+  put_u32(file, kHeadData + 12, 0x7FFFFFFF);
+  put_u32(file, kHeadData + 16, 0xFFFFFFFF);
+  put_u32(file, kHeadData + 20, 0xAAAAAAAA);
+  fix_crc(file, kHeadAt);
+  {
+    Probe probe;
+    Reader r;
+    const Status s = r.feed(file);
+    CHECK(s.code() == ErrorCode::limit_exceeded);
+    CHECK(s.offset() <= kHeadData + 56);
+    CHECK(probe.largest() < 64 * 1024);
+  }
+  file[kHeadData + 8] = 30;
+  fix_crc(file, kHeadAt);
+  {
+    Probe probe;
+    const Status s = read_all(file).status();
+    CHECK((s.code() == ErrorCode::limit_exceeded || s.code() == ErrorCode::bad_field));
+    CHECK(s.offset() <= kHeadData + 56);
+    CHECK(probe.largest() < 64 * 1024);
+  }
+}
+
+TEST_CASE("each configurable limit is enforced") {
+  const auto file = test::big_file();
+  Limits l;
+  l.max_levels = 2;
+  CHECK(read_all(file, l).status().code() == ErrorCode::limit_exceeded);
+  l = {};
+  l.max_vertices = 3199;  // level 3 has 3200
+  CHECK(read_all(file, l).status().code() == ErrorCode::limit_exceeded);
+  l.max_vertices = 3200;
+  CHECK(read_all(file, l).complete());
+  l = {};
+  l.max_file_size = file.size() - 1;
+  CHECK(read_all(file, l).status().code() == ErrorCode::limit_exceeded);
+  l = {};
+  l.max_chunks = 4;  // the file has CTRL, 3 LEVL and meta
+  CHECK(read_all(file, l).status().code() == ErrorCode::limit_exceeded);
+  l = {};
+  l.max_ancillary_bytes = 10;  // the meta chunk is larger
+  CHECK(read_all(file, l).status().code() == ErrorCode::limit_exceeded);
+}
+
+TEST_CASE("a chunk declaring 3 GiB allocates only for the bytes that arrive") {
+  // The last chunk (meta) and its table-of-contents entry both claim 3 GiB;
+  // the file is a few hundred bytes.  Nothing is wrong until the input ends.
+  auto file = test::small_file();
+  const Reader good = read_all(file);
+  const size_t n = good.toc().size();
+  const size_t entry = kIndxData + 16 + 16 * (n - 1);
+  const uint64_t big = 3ull << 30;
+  put_u32(file, entry + 4, static_cast<uint32_t>(big));
+  put_u64(file, kIndxData, good.toc().back().offset + 12 + big);
+  fix_crc(file, kIndxAt);
+  put_u32(file, good.toc().back().offset, static_cast<uint32_t>(big));
+  Limits l;
+  l.max_ancillary_bytes = 0xFFFFFFFFu;
+  l.max_file_size = uint64_t{1} << 40;
+  Probe probe;
+  Reader r(l);
+  CHECK(r.feed(file).ok());
+  CHECK(r.levels_ready() == 3);
+  CHECK(r.finish().code() == ErrorCode::truncated);
+  CHECK(probe.largest() < 64 * 1024);
+  // With the default ancillary limit the entry alone is refused.
+  CHECK(read_all(file).status().code() == ErrorCode::limit_exceeded);
+}
