@@ -15,16 +15,34 @@ std::atomic<bool> g_armed{false};
 std::atomic<size_t> g_largest{0};
 }  // namespace
 
-void* operator new(size_t n) {
+// Every replaceable form, so allocation and release always pair up (the
+// sanitizers check that).
+namespace {
+void* counted_alloc(size_t n) {
   if (g_armed.load(std::memory_order_relaxed)) {
     size_t seen = g_largest.load();
     while (n > seen && !g_largest.compare_exchange_weak(seen, n)) {}
   }
-  if (void* p = std::malloc(n ? n : 1)) return p;
+  return std::malloc(n ? n : 1);
+}
+}  // namespace
+
+void* operator new(size_t n) {
+  if (void* p = counted_alloc(n)) return p;
   throw std::bad_alloc();
 }
+void* operator new[](size_t n) {
+  if (void* p = counted_alloc(n)) return p;
+  throw std::bad_alloc();
+}
+void* operator new(size_t n, const std::nothrow_t&) noexcept { return counted_alloc(n); }
+void* operator new[](size_t n, const std::nothrow_t&) noexcept { return counted_alloc(n); }
 void operator delete(void* p) noexcept { std::free(p); }
+void operator delete[](void* p) noexcept { std::free(p); }
 void operator delete(void* p, size_t) noexcept { std::free(p); }
+void operator delete[](void* p, size_t) noexcept { std::free(p); }
+void operator delete(void* p, const std::nothrow_t&) noexcept { std::free(p); }
+void operator delete[](void* p, const std::nothrow_t&) noexcept { std::free(p); }
 
 using namespace dbss;
 using namespace dbss::format;
