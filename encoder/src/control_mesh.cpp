@@ -3,6 +3,7 @@
 #include <chrono>
 #include <string>
 
+#include "dbss/encoder/mesh_ops.h"
 #include "dbss/encoder/point_index.h"
 #include "dbss/encoder/projection.h"
 #include "dbss/encoder/shell_mesh.h"
@@ -60,6 +61,9 @@ Result<ControlMeshStages> build_control_mesh(const PointCloud& points, const Con
 
   t = Clock::now();
   s.control = s.simplified;
+  // Smooth out any fold the collapses left, then project: the projection
+  // refuses moves that fold, so the control mesh ends fold-free.
+  s.untangled = untangle_folds(s.control);
   s.projection_skipped = project_to_points(s.control, index);
   s.seconds.project = since(t);
   return s;

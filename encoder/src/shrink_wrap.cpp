@@ -61,6 +61,7 @@ ShrinkWrapStats shrink_wrap(TriangleMesh& m, const PointIndex& index, const Shri
     stats.iterations = it + 1;
     if (moved / std::max<size_t>(1, n) < o.tolerance * mean_edge) break;
   }
+  stats.untangled = untangle_folds(m);
   double sum = 0, worst = 0;
   for (size_t v = 0; v < n; ++v) {
     const float* p = &m.positions[3 * v];

@@ -35,6 +35,7 @@ struct ControlMeshStages {
   ShrinkWrapStats wrap_stats;
   SimplifyStats simplify_stats;
   size_t projection_skipped = 0;  // control vertices left off the points to avoid a fold
+  size_t untangled = 0;           // folded edges the simplification left, smoothed out before projection
   StageTimes seconds;
 };
 

@@ -23,6 +23,9 @@ Adjacency vertex_triangles(const TriangleMesh& m);
 // within 90 degrees of where it faced before (no triangle turns over).
 bool move_keeps_orientation(const TriangleMesh& m, const Adjacency& vertex_tris, uint32_t v, const float to[3]);
 
+// Whether any edge of the triangles around v is folded (see count_foldovers).
+bool folded_around(const TriangleMesh& m, const Adjacency& vertex_tris, uint32_t v, double max_angle_degrees = 150);
+
 // Area-weighted unit vertex normals (zero for isolated or degenerate fans).
 std::vector<std::array<double, 3>> vertex_normals(const TriangleMesh& m);
 
@@ -30,6 +33,14 @@ std::vector<std::array<double, 3>> vertex_normals(const TriangleMesh& m);
 // their normals is over `max_angle_degrees` (a fold-over).  Closed manifold
 // input expected.
 size_t count_foldovers(const TriangleMesh& m, double max_angle_degrees = 150);
+
+// Vertices on the edges count_foldovers() would count.
+std::vector<uint32_t> foldover_vertices(const TriangleMesh& m, double max_angle_degrees = 150);
+
+// Smooths folds away: vertices on folded edges and their neighbours go to
+// the mean of their neighbours, up to `rounds` times.  Returns the number of
+// folded edges met.
+size_t untangle_folds(TriangleMesh& m, int rounds = 8);
 
 // Winding-number inside test of a closed, outward-oriented mesh.
 bool inside_mesh(const TriangleMesh& m, const std::array<double, 3>& p);

@@ -7,9 +7,9 @@
 
 namespace dbss {
 
-// Moves every vertex to its closest point, in vertex order, except where
-// that would turn a triangle over (thin parts, where the closest point can
-// lie on the far side); returns how many vertices were left in place.
+// Moves every vertex, in vertex order, to the closest of its 16 nearest
+// points that turns no triangle over and folds no edge (on thin parts the very closest can lie
+// on the far side); returns how many vertices found none and stayed.
 size_t project_to_points(TriangleMesh& mesh, const PointIndex& points);
 
 }  // namespace dbss

@@ -22,6 +22,7 @@ struct ShrinkWrapStats {
   int iterations = 0;
   double mean_distance = 0;  // mean vertex-to-closest-point distance at the end
   double max_distance = 0;
+  size_t untangled = 0;  // folded edges smoothed out after the last iteration
 };
 
 // Moves mesh vertices in place; connectivity is unchanged.

@@ -12,13 +12,13 @@ struct SimplifyStats {
   uint32_t faces_before = 0, faces_after = 0;
 };
 
-// Garland-Heckbert quadric edge collapses down to `target_faces` triangles,
-// through OpenMesh's decimater: its collapse test keeps the link condition
-// (so the mesh stays manifold and keeps its genus), its normal-flipping
-// module rejects collapses that turn a triangle over (more than 60 degrees),
-// and its aspect-ratio module rejects needles.  A closed mesh loses two
-// triangles per collapse, so an even target is met exactly unless every
-// remaining collapse is refused; then fewer collapses happen (see stats).
+// Garland-Heckbert quadric edge collapses (area-weighted plane quadrics,
+// optimal point when well conditioned) down to `target_faces` triangles.  A
+// collapse is refused if it breaks the link condition (the mesh stays a
+// manifold of the same genus and components), leaves a valence under 3,
+// turns a triangle by more than 60 degrees, or makes one with an angle under
+// about 3 degrees.  A closed mesh loses two triangles per collapse, so an
+// even target is met exactly unless every remaining collapse is refused.
 Result<TriangleMesh> simplify_mesh(const TriangleMesh& mesh, uint32_t target_faces, SimplifyStats* stats = nullptr);
 
 // The default control mesh size for a shell: an eighth of its triangles,

@@ -1,0 +1,82 @@
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <filesystem>
+
+#include "../sampled_shapes.h"
+#include "dbss/encoder/control_mesh.h"
+#include "dbss/encoder/mesh_ops.h"
+#include "dbss/encoder/point_index.h"
+
+using namespace dbss;
+
+TEST_CASE("control meshes of shapes with known genus: closed, manifold, right components and genus, on the points") {
+  for (const test::Shape& s : test::genus_shapes()) {
+    INFO(s.name);
+    const PointCloud pc = test::sample_sdf(s.sdf, s.lo, s.hi, 20000);
+    REQUIRE(pc.size() > 19000);
+    auto r = build_control_mesh(pc);
+    INFO(r.status().to_string());
+    REQUIRE(r.ok());
+    const ControlMeshStages& st = r.value();
+    for (const TriangleMesh* m : {&st.shell, &st.wrapped, &st.simplified, &st.control}) {
+      const MeshInfo info = mesh_info(*m);
+      CHECK(info.manifold);
+      CHECK(info.closed);
+      CHECK(info.components == s.components);
+      CHECK(info.genus == s.genus);
+    }
+    CHECK(count_foldovers(st.wrapped) == 0);
+    CHECK(count_foldovers(st.control) == 0);
+    // The simplifier meets its (even) target exactly.
+    CHECK(st.control.triangle_count() == default_control_faces(static_cast<uint32_t>(st.shell.triangle_count()), s.genus));
+    // Control vertices lie on (or, where projection was refused, near) the points.
+    const PointIndex index(pc);
+    size_t on_points = 0;
+    for (size_t v = 0; v < st.control.vertex_count(); ++v) {
+      const float* p = &st.control.positions[3 * v];
+      const float* q = &pc.xyz[3 * index.nearest(p)];
+      const double d = std::sqrt(std::pow(p[0] - q[0], 2) + std::pow(p[1] - q[1], 2) + std::pow(p[2] - q[2], 2));
+      CHECK(d <= 0.5 * st.cells.cell);
+      on_points += d == 0;
+    }
+    CHECK(on_points * 10 >= st.control.vertex_count() * 9);
+    // Shrink-wrapping pulled the shell onto the points.
+    CHECK(st.wrap_stats.mean_distance < 0.25 * st.cells.cell);
+  }
+}
+
+TEST_CASE("cell carving keeps a deep concavity that a bounding-box shrink-wrap would fill") {
+  const test::Shape cup = test::genus_shapes()[4];
+  REQUIRE(std::string(cup.name).find("cup") != std::string::npos);
+  const PointCloud pc = test::sample_sdf(cup.sdf, cup.lo, cup.hi, 20000);
+  auto r = build_control_mesh(pc);
+  REQUIRE(r.ok());
+  // The middle of the U's gap is inside the points' bounding box (and its
+  // convex hull) but outside the shape: the control mesh must leave it out.
+  const std::array<double, 3> gap = {0.0, 0.0, 0.4};
+  REQUIRE(cup.sdf(gap[0], gap[1], gap[2]) > 0.3);
+  CHECK(!inside_mesh(r.value().control, gap));
+  CHECK(!inside_mesh(r.value().shell, gap));
+  // ... while points inside the walls and the base are inside it.
+  CHECK(inside_mesh(r.value().control, {-0.8, 0.0, 0.4}));
+  CHECK(inside_mesh(r.value().control, {0.0, 0.0, -0.8}));
+}
+
+TEST_CASE("bunny scan (libcgal-demo data, skipped when absent)") {
+  const std::string path = std::string(DBSS_SOURCE_DIR) + "/test-data/data/meshes/bunny00.off";
+  if (!std::filesystem::exists(path)) {
+    WARN("skipped: run scripts/fetch-test-data.sh for " << path);
+    return;
+  }
+  auto pc = read_points(path);
+  REQUIRE(pc.ok());
+  auto r = build_control_mesh(pc.value());
+  REQUIRE(r.ok());
+  const MeshInfo info = mesh_info(r.value().control);
+  CHECK(info.manifold);
+  CHECK(info.closed);
+  CHECK(info.components == 1);
+  CHECK(info.genus == 0);
+  CHECK(count_foldovers(r.value().control) == 0);
+}
