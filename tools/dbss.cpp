@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "dbss/format/reader.h"
+#include "encode.h"
 #include "info.h"
 
 namespace {
@@ -17,7 +18,8 @@ constexpr const char* kUsage =
     "Displaced Butterfly Subdivision Surfaces codec, format version 1.0.\n"
     "\n"
     "commands:\n"
-    "  info IN.dbss [--json]   chunks, sizes, per-level counts, steps and checksum status\n"
+    "  encode INPUT -o OUT.dbss   reconstruct a point cloud or mesh and write it\n"
+    "  info IN.dbss [--json]      chunks, sizes, per-level counts, steps and checksum status\n"
     "\n"
     "Run 'dbss <command> --help' for a command's options.\n";
 
@@ -41,6 +43,7 @@ int main(int argc, char** argv) {
   args.erase(args.begin());
   try {
     if (cmd == "info") return dbss::tools::run_info(args);
+    if (cmd == "encode") return dbss::tools::run_encode(args);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "dbss %.*s: internal error: %s\n", static_cast<int>(cmd.size()), cmd.data(), e.what());
     return 2;

@@ -199,15 +199,11 @@ class Simplifier {
     removed_[v] = 1;
     pos_[u] = p;
     q_[u] += q_[v];
+    // Only edges at u change cost (their quadric and end moved); validity
+    // elsewhere is re-checked when an edge comes off the heap.
     ++stamp_[u];
     neighbours(u, nu_);
-    for (uint32_t w : nu_) {
-      ++stamp_[w];
-    }
-    for (uint32_t w : nu_) {
-      neighbours(w, nw_);
-      for (uint32_t x : nw_) push(std::min(w, x), std::max(w, x));
-    }
+    for (uint32_t w : nu_) push(std::min(u, w), std::max(u, w));
   }
 
   std::vector<uint32_t> tris_;

@@ -1,0 +1,106 @@
+// Control-mesh reconstruction: per-stage times on real scans (when
+// scripts/fetch-test-data.sh has run) and on sampled test shapes, and our
+// QEM simplifier next to OpenMesh's decimater on the same shrink-wrapped
+// mesh and target, measured in the same run.
+//
+// usage: control_mesh_bench [POINT_FILE...]
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "../tests/sampled_shapes.h"
+#include "dbss/encoder/control_mesh.h"
+#include "dbss/encoder/mesh_ops.h"
+
+#ifdef DBSS_HAVE_OPENMESH
+#include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
+#include <OpenMesh/Tools/Decimater/DecimaterT.hh>
+#include <OpenMesh/Tools/Decimater/ModAspectRatioT.hh>
+#include <OpenMesh/Tools/Decimater/ModNormalFlippingT.hh>
+#include <OpenMesh/Tools/Decimater/ModQuadricT.hh>
+#endif
+
+namespace {
+using Clock = std::chrono::steady_clock;
+
+double openmesh_decimate_ms(const dbss::TriangleMesh& in, uint32_t target, size_t& faces_out) {
+#ifdef DBSS_HAVE_OPENMESH
+  struct Traits : public OpenMesh::DefaultTraits {
+    typedef OpenMesh::Vec3d Point;
+    typedef OpenMesh::Vec3d Normal;
+  };
+  using OMesh = OpenMesh::TriMesh_ArrayKernelT<Traits>;
+  const auto t0 = Clock::now();
+  OMesh om;
+  std::vector<OMesh::VertexHandle> vh;
+  for (size_t v = 0; v < in.vertex_count(); ++v)
+    vh.push_back(om.add_vertex(OMesh::Point(in.positions[3 * v], in.positions[3 * v + 1], in.positions[3 * v + 2])));
+  for (size_t f = 0; f < in.triangle_count(); ++f)
+    om.add_face(vh[in.triangles[3 * f]], vh[in.triangles[3 * f + 1]], vh[in.triangles[3 * f + 2]]);
+  om.request_face_normals();
+  om.update_face_normals();
+  OpenMesh::Decimater::DecimaterT<OMesh> dec(om);
+  OpenMesh::Decimater::ModQuadricT<OMesh>::Handle q;
+  OpenMesh::Decimater::ModNormalFlippingT<OMesh>::Handle nf;
+  OpenMesh::Decimater::ModAspectRatioT<OMesh>::Handle ar;
+  dec.add(q);
+  dec.add(nf);
+  dec.add(ar);
+  dec.module(q).unset_max_err();
+  dec.module(nf).set_max_normal_deviation(60.0);
+  dec.module(ar).set_aspect_ratio(10.0f);
+  dec.initialize();
+  dec.decimate_to_faces(0, target);
+  om.garbage_collection();
+  faces_out = om.n_faces();
+  return std::chrono::duration<double>(Clock::now() - t0).count() * 1e3;
+#else
+  (void)in, (void)target;
+  faces_out = 0;
+  return 0;
+#endif
+}
+
+void run(const std::string& name, const dbss::PointCloud& pc) {
+  const auto t0 = Clock::now();
+  auto r = dbss::build_control_mesh(pc);
+  const double total = std::chrono::duration<double>(Clock::now() - t0).count() * 1e3;
+  if (!r.ok()) {
+    std::printf("%-16s failed: %s\n", name.c_str(), r.status().to_string().c_str());
+    return;
+  }
+  const auto& s = r.value();
+  const auto info = dbss::mesh_info(s.control);
+  size_t om_faces = 0;
+  const double om = openmesh_decimate_ms(s.wrapped, static_cast<uint32_t>(s.control.triangle_count()), om_faces);
+  std::printf("%-16s %7zu %5d %6zu %6zu %2u/%-2lld | %6.1f %6.1f %6.1f %6.1f %6.1f %6.1f | %7.1f | %7.1f (%zu) %6.2fx\n",
+              name.c_str(), pc.size(), s.carving.grid, s.shell.triangle_count(), s.control.triangle_count(), info.components,
+              static_cast<long long>(info.genus), s.seconds.grid * 1e3, s.seconds.carve * 1e3, s.seconds.triangulate * 1e3,
+              s.seconds.shrink_wrap * 1e3, s.seconds.simplify * 1e3, s.seconds.project * 1e3, total, om, om_faces,
+              om > 0 ? om / (s.seconds.simplify * 1e3) : 0.0);
+}
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::vector<std::string> files;
+  for (int i = 1; i < argc; ++i) files.push_back(argv[i]);
+  if (files.empty())
+    for (const char* f : {"test-data/data/meshes/bunny00.off", "test-data/data/points_3/kitten.xyz",
+                          "test-data/data/meshes/fandisk.off"})
+      if (std::filesystem::exists(f)) files.push_back(f);
+  std::printf("%-16s %7s %5s %6s %6s %5s | %6s %6s %6s %6s %6s %6s | %7s | %s\n", "input", "points", "grid", "shellF",
+              "ctrlF", "c/g", "grid", "carve", "tri", "wrap", "QEM", "proj", "total", "OpenMesh QEM ms (faces) / ours");
+  for (const auto& f : files) {
+    auto pc = dbss::read_points(f);
+    if (!pc.ok()) {
+      std::printf("%s: %s\n", f.c_str(), pc.status().to_string().c_str());
+      continue;
+    }
+    run(std::filesystem::path(f).filename().string(), pc.value());
+  }
+  for (const auto& s : dbss::test::genus_shapes()) run(s.name, dbss::test::sample_sdf(s.sdf, s.lo, s.hi, 35000));
+  std::printf("\nstage times in ms; c/g = components/genus of the control mesh; one run each.\n");
+  return 0;
+}
