@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# The main job on the shipped example: install, build, run.
+# The main job on the shipped example: install, build, encode a point cloud,
+# decode every level, print sizes and per-level counts.
 # README command (a); its name and arguments stay fixed as the codec grows.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -8,8 +9,11 @@ bash scripts/install-deps.sh
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release
 cmake --build build
 
-mkdir -p build/example
-# Until the encoder lands (issues 5 and 6) the job is the container round
-# trip: a Draco control mesh and three levels written, verified and read back.
-build/bin/dbss-container-example build/example/torus.dbss
-build/bin/dbss info build/example/torus.dbss
+out=build/example
+mkdir -p "$out"
+build/bin/dbss encode examples/double-torus.xyz -o "$out/double-torus.dbss" --dump-stages "$out/stages"
+levels=$(build/bin/dbss info "$out/double-torus.dbss" --json | sed -n 's/^ *"levels": \([0-9]*\),$/\1/p')
+for level in $(seq 0 "${levels:-0}"); do
+  build/bin/dbss decode "$out/double-torus.dbss" --level "$level" -o "$out/double-torus-level$level.ply"
+done
+build/bin/dbss info "$out/double-torus.dbss"

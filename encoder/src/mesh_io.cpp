@@ -1,5 +1,7 @@
 #include "dbss/encoder/mesh_io.h"
 
+#include <bit>
+#include <cctype>
 #include <cstdio>
 #include <map>
 #include <string>
@@ -30,6 +32,47 @@ Status write_obj(const std::string& path, const TriangleMesh& m) {
     out.append(b, static_cast<size_t>(n));
   }
   return put(path, out);
+}
+
+Status write_mesh(const std::string& path, const TriangleMesh& m) {
+  std::string ext = path.size() >= 4 ? path.substr(path.size() - 4) : "";
+  for (char& ch : ext) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+  if (ext == ".obj") return write_obj(path, m);
+  if (ext == ".off") {
+    std::string out = "OFF\n" + std::to_string(m.vertex_count()) + " " + std::to_string(m.triangle_count()) + " 0\n";
+    char b[96];
+    for (size_t v = 0; v < m.vertex_count(); ++v) {
+      const int n = std::snprintf(b, sizeof b, "%.9g %.9g %.9g\n", m.positions[3 * v], m.positions[3 * v + 1], m.positions[3 * v + 2]);
+      out.append(b, static_cast<size_t>(n));
+    }
+    for (size_t f = 0; f < m.triangle_count(); ++f) {
+      const int n = std::snprintf(b, sizeof b, "3 %u %u %u\n", m.triangles[3 * f], m.triangles[3 * f + 1], m.triangles[3 * f + 2]);
+      out.append(b, static_cast<size_t>(n));
+    }
+    return put(path, out);
+  }
+  if (ext == ".ply") {
+    std::string out = "ply\nformat binary_little_endian 1.0\ncomment dbss\nelement vertex " + std::to_string(m.vertex_count()) +
+                      "\nproperty float x\nproperty float y\nproperty float z\nelement face " +
+                      std::to_string(m.triangle_count()) + "\nproperty list uchar uint vertex_indices\nend_header\n";
+    auto raw = [&](const void* p, size_t n) { out.append(static_cast<const char*>(p), n); };
+    for (float x : m.positions) {
+      const uint32_t u = std::bit_cast<uint32_t>(x);
+      const uint8_t le[4] = {uint8_t(u), uint8_t(u >> 8), uint8_t(u >> 16), uint8_t(u >> 24)};
+      raw(le, 4);
+    }
+    for (size_t f = 0; f < m.triangle_count(); ++f) {
+      const uint8_t three = 3;
+      raw(&three, 1);
+      for (int k = 0; k < 3; ++k) {
+        const uint32_t u = m.triangles[3 * f + k];
+        const uint8_t le[4] = {uint8_t(u), uint8_t(u >> 8), uint8_t(u >> 16), uint8_t(u >> 24)};
+        raw(le, 4);
+      }
+    }
+    return put(path, out);
+  }
+  return Status(ErrorCode::invalid_argument, path + ": unknown mesh format (expected .ply, .obj or .off)");
 }
 
 Status write_cells_obj(const std::string& path, const CellGrid& g, bool occupied_only) {

@@ -14,6 +14,11 @@ namespace dbss {
 // Wavefront OBJ of a triangle mesh, written atomically.
 Status write_obj(const std::string& path, const TriangleMesh& mesh);
 
+// A triangle mesh as .obj, .off or binary little-endian .ply, chosen by the
+// extension of `path`; written atomically.  invalid_argument for another
+// extension.
+Status write_mesh(const std::string& path, const TriangleMesh& mesh);
+
 // The outer faces of a set of cells as an OBJ quad mesh: `which` picks the
 // cells (e.g. occupied ones, or all solid ones after carving).
 Status write_cells_obj(const std::string& path, const CellGrid& grid, bool occupied_only);

@@ -1,0 +1,100 @@
+#include "decode.h"
+
+#include <charconv>
+#include <cstdio>
+#include <string>
+
+#include "dbss/decoder/progressive.h"
+#include "dbss/encoder/mesh_io.h"
+#include "dbss/format/reader.h"
+
+namespace dbss::tools {
+
+namespace {
+constexpr const char* kHelp =
+    "usage: dbss decode IN.dbss -o OUT.{ply,obj,off} [--level L]\n"
+    "\n"
+    "Decodes one level of a .dbss file to a mesh file.\n"
+    "\n"
+    "  -o, --output FILE   mesh to write (.ply binary, .obj or .off), replaced atomically\n"
+    "  --level L           level to decode, 0 = control mesh (default: the finest\n"
+    "                      level in the file)\n"
+    "\n"
+    "A truncated file decodes its finest complete level and says so on stderr.\n"
+    "Exit status: 0 written, 1 bad input or usage, 2 internal error.\n";
+
+int usage(const std::string& m) {
+  std::fprintf(stderr, "dbss decode: %s\n\n%s", m.c_str(), kHelp);
+  return 1;
+}
+}  // namespace
+
+int run_decode(const std::vector<std::string_view>& args) {
+  std::string input, output;
+  long level = -1;
+  for (size_t i = 0; i < args.size(); ++i) {
+    const std::string_view a = args[i];
+    if (a == "--help" || a == "-h") {
+      std::fputs(kHelp, stdout);
+      return 0;
+    } else if (a == "-o" || a == "--output") {
+      if (i + 1 >= args.size()) return usage("-o needs a file name");
+      output = args[++i];
+    } else if (a == "--level") {
+      if (i + 1 >= args.size()) return usage("--level needs a number");
+      const std::string_view v = args[++i];
+      const auto r = std::from_chars(v.data(), v.data() + v.size(), level);
+      if (r.ec != std::errc() || r.ptr != v.data() + v.size() || level < 0 || level > 30)
+        return usage("--level needs a whole number from 0 to 30");
+    } else if (!a.empty() && a[0] == '-') {
+      return usage("unknown option '" + std::string(a) + "'");
+    } else if (input.empty()) {
+      input = a;
+    } else {
+      return usage("more than one input file");
+    }
+  }
+  if (input.empty()) return usage("no input file");
+  if (output.empty()) return usage("no output file (-o OUT.ply)");
+
+  auto bytes = format::read_file(input);
+  if (!bytes.ok()) {
+    std::fprintf(stderr, "dbss decode: %s\n", bytes.status().message().c_str());
+    return 1;
+  }
+  ProgressiveDecoder d;
+  d.feed(bytes.value());
+  const Status end = d.finish();
+  if (!end.ok() && end.code() != ErrorCode::truncated) {
+    std::fprintf(stderr, "dbss decode: %s: %s\n", input.c_str(), end.to_string().c_str());
+    return 1;
+  }
+  const int ready = d.ready_level();
+  if (ready < 0) {
+    std::fprintf(stderr, "dbss decode: %s: %s\n", input.c_str(), end.to_string().c_str());
+    return 1;
+  }
+  if (!end.ok())
+    std::fprintf(stderr, "dbss decode: %s is truncated (%s); decoding its finest complete level, %d\n", input.c_str(),
+                 end.message().c_str(), ready);
+  if (level > ready) {
+    std::fprintf(stderr, "dbss decode: %s: level %ld is not in the file (finest complete level: %d)\n", input.c_str(),
+                 level, ready);
+    return 1;
+  }
+  const uint32_t want = level < 0 ? static_cast<uint32_t>(ready) : static_cast<uint32_t>(level);
+  auto mesh = d.decode(want);
+  if (!mesh.ok()) {
+    std::fprintf(stderr, "dbss decode: %s: %s\n", input.c_str(), mesh.status().to_string().c_str());
+    return 1;
+  }
+  if (Status s = write_mesh(output, mesh.value().copy()); !s.ok()) {
+    std::fprintf(stderr, "dbss decode: %s\n", s.message().c_str());
+    return 1;
+  }
+  std::printf("%s: level %u, %zu vertices, %zu triangles -> %s\n", input.c_str(), want, mesh.value().vertex_count(),
+              mesh.value().triangle_count(), output.c_str());
+  return 0;
+}
+
+}  // namespace dbss::tools
