@@ -1,6 +1,8 @@
 #include "encode.h"
 
 #include <charconv>
+#include <cmath>
+#include <cstdlib>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -10,7 +12,10 @@
 #include "dbss/decoder/topology.h"
 #include "dbss/encoder/control_mesh.h"
 #include "dbss/encoder/control_mesh_codec.h"
+#include "dbss/encoder/levels.h"
+#include "dbss/encoder/point_index.h"
 #include "dbss/encoder/mesh_io.h"
+#include "dbss/encoder/mesh_ops.h"
 #include "dbss/encoder/point_input.h"
 #include "dbss/format/writer.h"
 
@@ -33,8 +38,12 @@ constexpr const char* kHelp =
     "                         least 96 + 64 per handle, at most 4000)\n"
     "  --control-bits B       Draco position bits of the control mesh, 8..30\n"
     "                         (default 16)\n"
-    "  --levels L             subdivision levels with displacements; this\n"
-    "                         build writes the control mesh only: 0 (default)\n"
+    "  --levels L             subdivision levels with displacements, 0..8\n"
+    "                         (default 3)\n"
+    "  --error E              largest quantization error of a displacement,\n"
+    "                         relative to the bounding-box diagonal, 1e-7..0.1\n"
+    "                         (default 1e-4: the step is 2E x diagonal)\n"
+    "  --effort N             zstd level for the displacements, 1..22 (default 19)\n"
     "  --dump-stages DIR      also write every stage as an OBJ into DIR:\n"
     "                         occupied cells, carved cells, triangulated shell,\n"
     "                         shrink-wrapped, simplified, control mesh\n"
@@ -56,7 +65,8 @@ int usage(const std::string& message) {
 
 int run_encode(const std::vector<std::string_view>& args) {
   std::string input, output, dump;
-  long grid = 0, faces = 0, bits = 16, levels = 0;
+  long grid = 0, faces = 0, bits = 16, levels = 3, effort = 19;
+  double error = 1e-4;
   for (size_t i = 0; i < args.size(); ++i) {
     const std::string_view a = args[i];
     auto value = [&](std::string_view& v) {
@@ -79,8 +89,16 @@ int run_encode(const std::vector<std::string_view>& args) {
     } else if (a == "--control-bits") {
       if (!value(v) || !parse_int(v, 8, 30, bits)) return usage("--control-bits needs a whole number from 8 to 30");
     } else if (a == "--levels") {
-      if (!value(v) || !parse_int(v, 0, 0, levels))
-        return usage("--levels: this build writes the control mesh only (0); displacement levels come with the sampler");
+      if (!value(v) || !parse_int(v, 0, 8, levels)) return usage("--levels needs a whole number from 0 to 8");
+    } else if (a == "--effort") {
+      if (!value(v) || !parse_int(v, 1, 22, effort)) return usage("--effort needs a whole number from 1 to 22");
+    } else if (a == "--error") {
+      if (!value(v)) return usage("--error needs a number");
+      const std::string text(v);
+      char* end = nullptr;
+      error = std::strtod(text.c_str(), &end);
+      if (end != text.c_str() + text.size() || !(error >= 1e-7 && error <= 0.1))
+        return usage("--error needs a number from 1e-7 to 0.1");
     } else if (a == "--dump-stages") {
       if (!value(v)) return usage("--dump-stages needs a directory");
       dump = v;
@@ -148,12 +166,33 @@ int run_encode(const std::vector<std::string_view>& args) {
       c.header.bbox_max[a] = std::max(c.header.bbox_max[a], pc.xyz[3 * i + a]);
     }
   c.control_mesh = std::move(draco).value();
+  double diag2 = 0;
+  for (int a = 0; a < 3; ++a) diag2 += std::pow(double(c.header.bbox_max[a]) - c.header.bbox_min[a], 2);
+  const double diagonal = std::sqrt(diag2);
+  const auto t2 = Clock::now();
+  const PointIndex index(pc);
+  LevelEncodeOptions lo;
+  lo.levels = static_cast<uint32_t>(levels);
+  lo.error = error;
+  lo.zstd_level = static_cast<int>(effort);
+  lo.threads = 2;
+  auto encoded = encode_levels(decoded.value(), index, diagonal, lo);
+  if (!encoded.ok()) {
+    std::fprintf(stderr, "dbss encode: %s\n", encoded.status().to_string().c_str());
+    return 2;
+  }
+  const double levels_s = std::chrono::duration<double>(Clock::now() - t2).count();
+  c.header.level_count = static_cast<uint8_t>(levels);
+  c.header.error_target = static_cast<float>(error);
+  c.levels = encoded.value().levels;
+  char error_text[32];
+  std::snprintf(error_text, sizeof error_text, "%g", error);
   std::string params = "grid=" + std::to_string(st.carving.grid) + " control-faces=" +
                        std::to_string(st.control.triangle_count()) + " control-bits=" + std::to_string(bits) +
-                       " levels=" + std::to_string(levels);
+                       " levels=" + std::to_string(levels) + " error=" + error_text + " effort=" + std::to_string(effort);
   c.metadata = {{"encoder", "dbss " DBSS_VERSION}, {"encoder.params", params},
                 {"source", std::filesystem::path(input).filename().string()}};
-  auto bytes = format::serialize(c);
+  auto bytes = format::serialize(c, {static_cast<int>(effort)});
   if (!bytes.ok()) {
     std::fprintf(stderr, "dbss encode: %s\n", bytes.status().to_string().c_str());
     return 2;
@@ -203,8 +242,39 @@ int run_encode(const std::vector<std::string_view>& args) {
   row("shrink-wrapping", st.seconds.shrink_wrap, &st.wrapped, wrap);
   row("QEM simplification", st.seconds.simplify, &st.simplified, "");
   row("projection", st.seconds.project, &st.control, std::to_string(st.projection_skipped) + " vertices kept off the points");
-  row("Draco + container", write_s, &decoded.value(), std::to_string(c.control_mesh.size()) + " bytes of Draco, " + std::to_string(bits) + "-bit positions");
+  row("Draco + container", write_s - levels_s, &decoded.value(), std::to_string(c.control_mesh.size()) + " bytes of Draco, " + std::to_string(bits) + "-bit positions");
+  row("displacement levels", levels_s, nullptr, std::to_string(levels) + " level(s)");
   if (!dump.empty()) std::printf("stages written to %s/\n", dump.c_str());
+  if (levels > 0) {
+    // Quality, relative to the diagonal: the points' mean distance to each
+    // level's surface, and each level's vertices' mean distance to their
+    // nearest point (which the point spacing bounds from below).
+    std::printf("\n%-5s %9s %9s %10s %11s %9s %8s %11s %11s\n", "level", "odd", "vertices", "step", "clamped", "bytes",
+                "bits/odd", "pts->surf", "vert->pts");
+    for (uint32_t l = 0; l <= static_cast<uint32_t>(levels); ++l) {
+      PointCloud mesh_pts;
+      mesh_pts.xyz = encoded.value().positions[l];
+      double to_mesh = points_to_mesh(pc.xyz, {encoded.value().positions[l], encoded.value().triangles[l]}).mean;
+      double to_pts = 0;
+      for (size_t i = 0; i < mesh_pts.size(); ++i) {
+        const float* p = &mesh_pts.xyz[3 * i];
+        const float* q = &pc.xyz[3 * index.nearest(p)];
+        to_pts += std::sqrt(std::pow(p[0] - q[0], 2.0) + std::pow(p[1] - q[1], 2.0) + std::pow(p[2] - q[2], 2.0));
+      }
+      to_mesh /= diagonal;
+      to_pts /= mesh_pts.size() * diagonal;
+      if (l == 0) {
+        std::printf("%-5u %9s %9zu %10s %11s %9zu %8s %11.3e %11.3e\n", l, "-", mesh_pts.size(), "-", "-",
+                    c.control_mesh.size(), "-", to_mesh, to_pts);
+      } else {
+        const LevelStats& ls = encoded.value().stats[l - 1];
+        char clamped[32];
+        std::snprintf(clamped, sizeof clamped, "%zu (%.2f%%)", ls.clamped, 100.0 * ls.clamped / std::max<size_t>(1, ls.odd));
+        std::printf("%-5u %9zu %9zu %10.3g %11s %9zu %8.3f %11.3e %11.3e\n", l, ls.odd, mesh_pts.size(), ls.step, clamped,
+                    ls.bytes, 8.0 * ls.bytes / std::max<size_t>(1, ls.odd), to_mesh, to_pts);
+      }
+    }
+  }
   return 0;
 }
 

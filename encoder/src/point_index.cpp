@@ -37,6 +37,15 @@ size_t PointIndex::nearest_k(const float q[3], size_t k, uint32_t* indices, floa
   return tree_->tree.knnSearch(q, k, indices, dist2);
 }
 
+void PointIndex::within(const float q[3], float radius, std::vector<uint32_t>& out) const {
+  std::vector<std::pair<uint32_t, float>> hits;
+  nanoflann::SearchParams params;
+  params.sorted = false;
+  tree_->tree.radiusSearch(q, radius * radius, hits, params);  // L2_Simple works on squared distances
+  out.clear();
+  for (const auto& h : hits) out.push_back(h.first);
+}
+
 double point_spacing(const PointIndex& index, size_t k, double quantile) {
   const PointCloud& pc = index.points();
   const size_t n = pc.size();

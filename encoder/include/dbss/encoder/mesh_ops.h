@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "dbss/decoder/mesh.h"
+#include "dbss/encoder/point_index.h"
 
 namespace dbss {
 
@@ -41,6 +42,14 @@ std::vector<uint32_t> foldover_vertices(const TriangleMesh& m, double max_angle_
 // the mean of their neighbours, up to `rounds` times.  Returns the number of
 // folded edges met.
 size_t untangle_folds(TriangleMesh& m, int rounds = 8);
+
+// Mean and largest distance from each point to the mesh's surface (the
+// triangles around its 6 nearest mesh vertices, exact once the mesh is finer
+// than the point spacing).
+struct SurfaceDistance {
+  double mean = 0, max = 0;
+};
+SurfaceDistance points_to_mesh(const std::vector<float>& points_xyz, const TriangleMesh& mesh);
 
 // Winding-number inside test of a closed, outward-oriented mesh.
 bool inside_mesh(const TriangleMesh& m, const std::array<double, 3>& p);

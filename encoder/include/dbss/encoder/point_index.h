@@ -21,6 +21,8 @@ class PointIndex {
   uint32_t nearest(const float q[3]) const;
   // The k nearest points, closest first; returns how many were found.
   size_t nearest_k(const float q[3], size_t k, uint32_t* indices, float* dist2) const;
+  // Indices of the points within `radius` of q (unordered).
+  void within(const float q[3], float radius, std::vector<uint32_t>& out) const;
   const PointCloud& points() const noexcept { return points_; }
 
  private:

@@ -1,0 +1,49 @@
+// Encoder II: per level, subdivide the decoded previous level with the
+// decoder's own code, sample each odd vertex's displacement along the
+// decoder's normal, quantize, and continue from the dequantized result, so
+// the decoder reproduces the encoder's meshes bit for bit.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "dbss/decoder/mesh.h"
+#include "dbss/encoder/point_index.h"
+#include "dbss/format/container.h"
+#include "dbss/format/status.h"
+
+namespace dbss {
+
+struct LevelEncodeOptions {
+  uint32_t levels = 3;
+  // Largest quantization error relative to the bounding-box diagonal: the
+  // step is 2 * error * diagonal, so rounding moves a vertex at most
+  // error * diagonal.
+  double error = 1e-4;
+  int zstd_level = 19;
+  unsigned threads = 1;
+};
+
+struct LevelStats {
+  uint32_t level = 0;
+  size_t odd = 0;
+  float step = 0;
+  size_t clamped = 0, by_triangle = 0, by_plane = 0, by_nearest = 0;
+  double mean_abs_displacement = 0;
+  size_t bytes = 0;  // LEVL chunk data
+  format::DisplacementCoding coding = format::DisplacementCoding::byte_planes;
+};
+
+struct EncodedLevels {
+  std::vector<format::Level> levels;
+  std::vector<LevelStats> stats;
+  std::vector<std::vector<float>> positions;  // positions[l]: the reconstruction of level l (0 = control)
+  std::vector<std::vector<uint32_t>> triangles;
+};
+
+// `control` must be the Draco-decoded control mesh.  `diagonal` is the
+// bounding-box diagonal the error is relative to.
+Result<EncodedLevels> encode_levels(const TriangleMesh& control, const PointIndex& points, double diagonal,
+                                    const LevelEncodeOptions& options = {});
+
+}  // namespace dbss

@@ -1,0 +1,29 @@
+// Displacement sampling (paper, section 3.2): the signed distance from an
+// odd vertex along its normal to the surface the points describe.
+#pragma once
+
+#include <cstdint>
+
+#include "dbss/encoder/point_index.h"
+
+namespace dbss {
+
+enum class SampleSource : uint8_t {
+  triangle,  // the line hit a triangle of points inside the cylinder (the paper's method)
+  plane,     // fallback: a least-squares plane through the cylinder's points
+  nearest,   // fallback: the nearest point's offset along the normal
+};
+
+struct Sample {
+  double distance = 0;  // along the unit normal, model units
+  SampleSource source = SampleSource::nearest;
+  bool clamped = false;  // |distance| was cut to the limit
+};
+
+// p: the odd vertex; n: its unit normal (the decoder's); radius: the
+// cylinder's horizontal threshold; half_length: its vertical threshold; the
+// result is clamped to |distance| <= half_length.
+Sample sample_displacement(const PointIndex& points, const double p[3], const double n[3], double radius,
+                           double half_length);
+
+}  // namespace dbss

@@ -1,0 +1,93 @@
+#include "dbss/encoder/sampling.h"
+
+#include <Eigen/Dense>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+namespace dbss {
+
+namespace {
+using V = Eigen::Vector3d;
+
+// Ray-triangle intersection (Moller-Trumbore) for the full line p + t n.
+bool line_hits(const V& p, const V& n, const V& a, const V& b, const V& c, double& t) {
+  const V e1 = b - a, e2 = c - a;
+  const V h = n.cross(e2);
+  const double det = e1.dot(h);
+  if (std::abs(det) < 1e-14 * e1.norm() * e2.norm()) return false;
+  const double inv = 1.0 / det;
+  const V s = p - a;
+  const double u = inv * s.dot(h);
+  if (u < 0 || u > 1) return false;
+  const V q = s.cross(e1);
+  const double v = inv * n.dot(q);
+  if (v < 0 || u + v > 1) return false;
+  t = inv * e2.dot(q);
+  return true;
+}
+}  // namespace
+
+Sample sample_displacement(const PointIndex& index, const double pd[3], const double nd[3], double radius,
+                           double half_length) {
+  const PointCloud& pc = index.points();
+  const V p(pd[0], pd[1], pd[2]), n(nd[0], nd[1], nd[2]);
+  Sample out;
+  // Points inside the cylinder: horizontal distance to the line under
+  // `radius`, vertical offset along it under `half_length`.
+  thread_local std::vector<uint32_t> near;
+  const float q[3] = {static_cast<float>(pd[0]), static_cast<float>(pd[1]), static_cast<float>(pd[2])};
+  index.within(q, static_cast<float>(std::sqrt(radius * radius + half_length * half_length)), near);
+  struct Cand {
+    double horizontal, vertical;
+    V x;
+  };
+  thread_local std::vector<Cand> cyl;
+  cyl.clear();
+  for (uint32_t i : near) {
+    const V x(pc.xyz[3 * i], pc.xyz[3 * i + 1], pc.xyz[3 * i + 2]);
+    const double t = (x - p).dot(n);
+    const double h = (x - p - t * n).norm();
+    if (h < radius && std::abs(t) < half_length) cyl.push_back({h, t, x});
+  }
+  auto finish = [&](double d, SampleSource src) {
+    out.source = src;
+    out.clamped = std::abs(d) > half_length;
+    out.distance = std::clamp(d, -half_length, half_length);
+    return out;
+  };
+  if (cyl.size() >= 3) {
+    // Candidate triangles from the points nearest the line; the hit nearest
+    // to the vertex wins, so the closest sheet of a thin part is taken.
+    const size_t m = std::min<size_t>(cyl.size(), 7);
+    std::partial_sort(cyl.begin(), cyl.begin() + m, cyl.end(),
+                      [](const Cand& a, const Cand& b) { return a.horizontal < b.horizontal; });
+    double best = 0;
+    bool hit = false;
+    for (size_t i = 0; i < m; ++i)
+      for (size_t j = i + 1; j < m; ++j)
+        for (size_t k = j + 1; k < m; ++k) {
+          double t;
+          if (line_hits(p, n, cyl[i].x, cyl[j].x, cyl[k].x, t) && std::abs(t) < half_length && (!hit || std::abs(t) < std::abs(best)))
+            best = t, hit = true;
+        }
+    if (hit) return finish(best, SampleSource::triangle);
+    // Plane through the cylinder's points.
+    V c = V::Zero();
+    for (const Cand& x : cyl) c += x.x;
+    c /= static_cast<double>(cyl.size());
+    Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+    for (const Cand& x : cyl) cov += (x.x - c) * (x.x - c).transpose();
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
+    const V m3 = eig.eigenvectors().col(0);
+    const double nm = n.dot(m3);
+    if (std::abs(nm) > 0.3) return finish((c - p).dot(m3) / nm, SampleSource::plane);
+  }
+  // Nearest point's offset along the normal.
+  const uint32_t i = index.nearest(q);
+  const V x(pc.xyz[3 * i], pc.xyz[3 * i + 1], pc.xyz[3 * i + 2]);
+  return finish((x - p).dot(n), SampleSource::nearest);
+}
+
+}  // namespace dbss
