@@ -247,22 +247,17 @@ int run_encode(const std::vector<std::string_view>& args) {
   if (!dump.empty()) std::printf("stages written to %s/\n", dump.c_str());
   if (levels > 0) {
     // Quality, relative to the diagonal: the points' mean distance to each
-    // level's surface, and each level's vertices' mean distance to their
-    // nearest point (which the point spacing bounds from below).
+    // level's surface, and each level's vertices' mean distance to the
+    // surface of the points (a plane through their 8 nearest points).
     std::printf("\n%-5s %9s %9s %10s %11s %9s %8s %11s %11s\n", "level", "odd", "vertices", "step", "clamped", "bytes",
-                "bits/odd", "pts->surf", "vert->pts");
+                "bits/odd", "pts->surf", "surf->pts");
     for (uint32_t l = 0; l <= static_cast<uint32_t>(levels); ++l) {
       PointCloud mesh_pts;
       mesh_pts.xyz = encoded.value().positions[l];
       double to_mesh = points_to_mesh(pc.xyz, {encoded.value().positions[l], encoded.value().triangles[l]}).mean;
-      double to_pts = 0;
-      for (size_t i = 0; i < mesh_pts.size(); ++i) {
-        const float* p = &mesh_pts.xyz[3 * i];
-        const float* q = &pc.xyz[3 * index.nearest(p)];
-        to_pts += std::sqrt(std::pow(p[0] - q[0], 2.0) + std::pow(p[1] - q[1], 2.0) + std::pow(p[2] - q[2], 2.0));
-      }
+      double to_pts = vertices_to_points_surface(mesh_pts.xyz, index).mean;
       to_mesh /= diagonal;
-      to_pts /= mesh_pts.size() * diagonal;
+      to_pts /= diagonal;
       if (l == 0) {
         std::printf("%-5u %9s %9zu %10s %11s %9zu %8s %11.3e %11.3e\n", l, "-", mesh_pts.size(), "-", "-",
                     c.control_mesh.size(), "-", to_mesh, to_pts);

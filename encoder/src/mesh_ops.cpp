@@ -1,5 +1,7 @@
 #include "dbss/encoder/mesh_ops.h"
 
+#include <Eigen/Dense>
+
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -211,6 +213,32 @@ SurfaceDistance points_to_mesh(const std::vector<float>& xyz, const TriangleMesh
       }
     out.mean += best;
     out.max = std::max(out.max, best);
+  }
+  if (n) out.mean /= n;
+  return out;
+}
+
+SurfaceDistance vertices_to_points_surface(const std::vector<float>& xyz, const PointIndex& index) {
+  const PointCloud& pc = index.points();
+  SurfaceDistance out;
+  const size_t n = xyz.size() / 3;
+  uint32_t near[8];
+  float d2[8];
+  for (size_t i = 0; i < n; ++i) {
+    const size_t k = index.nearest_k(&xyz[3 * i], 8, near, d2);
+    Eigen::Vector3d c = Eigen::Vector3d::Zero();
+    for (size_t j = 0; j < k; ++j) c += Eigen::Vector3d(pc.xyz[3 * near[j]], pc.xyz[3 * near[j] + 1], pc.xyz[3 * near[j] + 2]);
+    c /= static_cast<double>(k);
+    Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+    for (size_t j = 0; j < k; ++j) {
+      const Eigen::Vector3d d = Eigen::Vector3d(pc.xyz[3 * near[j]], pc.xyz[3 * near[j] + 1], pc.xyz[3 * near[j] + 2]) - c;
+      cov += d * d.transpose();
+    }
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
+    const Eigen::Vector3d p(xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]);
+    const double dist = std::abs((p - c).dot(eig.eigenvectors().col(0)));
+    out.mean += dist;
+    out.max = std::max(out.max, dist);
   }
   if (n) out.mean /= n;
   return out;

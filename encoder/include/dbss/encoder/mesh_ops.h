@@ -51,6 +51,10 @@ struct SurfaceDistance {
 };
 SurfaceDistance points_to_mesh(const std::vector<float>& points_xyz, const TriangleMesh& mesh);
 
+// Mean and largest distance from each vertex to the surface of the points,
+// taken as the least-squares plane of its 8 nearest points.
+SurfaceDistance vertices_to_points_surface(const std::vector<float>& vertices_xyz, const PointIndex& points);
+
 // Winding-number inside test of a closed, outward-oriented mesh.
 bool inside_mesh(const TriangleMesh& m, const std::array<double, 3>& p);
 
