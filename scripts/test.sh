@@ -29,3 +29,7 @@ for cfg in "g++ Debug" "clang++ Release"; do
   cmake --build "$dir" -j "$jobs" --target codec_tests
   "$dir/bin/codec_tests" "golden files decode to the recorded bits at every level"
 done
+
+# Fuzzing: each libFuzzer target for about a minute (scripts/fuzz.sh).
+echo "== fuzz =="
+bash scripts/fuzz.sh

@@ -226,9 +226,9 @@ Result<PointCloud> parse_ply(const std::string& name, std::string_view bytes) {
       if (vertex) {
         const double v[3] = {row[ix[0]], row[ix[1]], row[ix[2]]};
         for (double x : v)
-          if (!std::isfinite(x) || std::abs(x) > 1e30)
+          if (!std::isfinite(x) || std::abs(x) > 1e15)
             return bad(name, (fmt == ascii ? "line " + std::to_string(line_no) : "vertex " + std::to_string(r)) +
-                                 ": coordinate is NaN, infinite or over 1e30");
+                                 ": coordinate is NaN, infinite or over 1e15");
         for (double x : v) c.xyz.push_back(static_cast<float>(x));
         if (want_normals)
           for (int k = 3; k < 6; ++k) c.normals.push_back(static_cast<float>(row[ix[k]]));

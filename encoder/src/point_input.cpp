@@ -72,10 +72,11 @@ bool parse_double(std::string_view tok, double& v) {
   return r.ec == std::errc() && r.ptr == tok.data() + tok.size();
 }
 
-// Appends a point after checking it is finite and representable.
+// Appends a point after checking it is finite and not over 1e15: squared
+// distances of such coordinates would overflow binary32 in the KD-tree.
 bool push_point(std::vector<float>& out, const double* v) {
   for (int k = 0; k < 3; ++k) {
-    if (!std::isfinite(v[k]) || std::abs(v[k]) > 1e30) return false;
+    if (!std::isfinite(v[k]) || std::abs(v[k]) > 1e15) return false;
   }
   for (int k = 0; k < 3; ++k) out.push_back(static_cast<float>(v[k]));
   return true;
@@ -107,7 +108,7 @@ Result<PointCloud> parse_xyz(const std::string& name, std::string_view text) {
     }
     if (comment || n == 0) continue;
     if (n < 3) return bad(name, at_line(lines.number()) + ": expected x y z, found " + std::to_string(n) + " values");
-    if (!push_point(c.xyz, v)) return bad(name, at_line(lines.number()) + ": coordinate is NaN, infinite or over 1e30");
+    if (!push_point(c.xyz, v)) return bad(name, at_line(lines.number()) + ": coordinate is NaN, infinite or over 1e15");
     if (n >= 6 && normals) {
       for (int k = 3; k < 6; ++k) c.normals.push_back(static_cast<float>(v[k]));
     } else {
@@ -133,7 +134,7 @@ Result<PointCloud> parse_obj(const std::string& name, std::string_view text) {
       if (!t.next(tok) || !parse_double(tok, v[k]))
         return bad(name, at_line(lines.number()) + ": a 'v' line needs three numbers");
     }
-    if (!push_point(c.xyz, v)) return bad(name, at_line(lines.number()) + ": coordinate is NaN, infinite or over 1e30");
+    if (!push_point(c.xyz, v)) return bad(name, at_line(lines.number()) + ": coordinate is NaN, infinite or over 1e15");
   }
   return c;
 }
@@ -187,7 +188,7 @@ Result<PointCloud> parse_off(const std::string& name, std::string_view text) {
     }
     if (n == 0) continue;
     if (n < 3) return bad(name, at_line(lines.number()) + ": a vertex needs three numbers");
-    if (!push_point(c.xyz, v)) return bad(name, at_line(lines.number()) + ": coordinate is NaN, infinite or over 1e30");
+    if (!push_point(c.xyz, v)) return bad(name, at_line(lines.number()) + ": coordinate is NaN, infinite or over 1e15");
   }
   return c;
 }
@@ -236,7 +237,7 @@ Result<PointCloud> parse_stl(const std::string& name, std::string_view bytes) {
     double v[3];
     for (int k = 0; k < 3; ++k)
       if (!t.next(tok) || !parse_double(tok, v[k])) return bad(name, at_line(lines.number()) + ": a vertex needs three numbers");
-    if (!push_point(c.xyz, v)) return bad(name, at_line(lines.number()) + ": coordinate is NaN, infinite or over 1e30");
+    if (!push_point(c.xyz, v)) return bad(name, at_line(lines.number()) + ": coordinate is NaN, infinite or over 1e15");
   }
   merge_duplicates(c.xyz);
   return c;

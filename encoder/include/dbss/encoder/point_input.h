@@ -21,8 +21,8 @@ struct PointCloud {
 // (`x y z` or `x y z nx ny nz` per line) and STL (ascii or binary; the
 // triangle corners, duplicates merged).  The format is chosen by extension,
 // case-insensitive.  Errors (invalid_argument / io) name the file and the
-// line or byte: unreadable, empty, malformed, cut short, NaN or infinite
-// coordinates.
+// line or byte: unreadable, empty, malformed, cut short, NaN, infinite or
+// over 1e15 in magnitude.
 Result<PointCloud> read_points(const std::string& path);
 
 // Same, from bytes already in memory; `name` is used in messages and its

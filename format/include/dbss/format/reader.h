@@ -30,6 +30,9 @@ struct Limits {
   uint64_t max_vertices = uint64_t{1} << 26;      // vertices of the finest level
   uint32_t max_chunks = 4096;                     // entries in the table of contents
   uint32_t max_ancillary_bytes = 16u << 20;       // data bytes of any one ancillary chunk
+  // Off only for fuzzing, so generated inputs reach the field checks behind
+  // the CRC (as libspng's spng_set_crc_action); never off for real files.
+  bool verify_checksums = true;
 };
 
 class Reader {
