@@ -1,5 +1,7 @@
 #include "encode.h"
 
+#include <unistd.h>
+
 #include <charconv>
 #include <cmath>
 #include <cstdlib>
@@ -23,6 +25,31 @@ namespace dbss::tools {
 
 namespace {
 
+// Progress on stderr, only on a terminal and only once the work has taken
+// over a second; the line is cleared when done.
+class Progress {
+ public:
+  Progress() : start_(std::chrono::steady_clock::now()), tty_(::isatty(2) == 1) {}
+  ~Progress() {
+    if (shown_) std::fputs("\r\033[K", stderr);
+  }
+  void show(const std::string& what) {
+    if (!tty_ || std::chrono::steady_clock::now() - start_ < std::chrono::seconds(1)) return;
+    std::fprintf(stderr, "\r\033[Kdbss encode: %s...", what.c_str());
+    std::fflush(stderr);
+    shown_ = true;
+  }
+  void done() {
+    if (shown_) std::fputs("\r\033[K", stderr);
+    shown_ = false;
+    tty_ = false;
+  }
+
+ private:
+  std::chrono::steady_clock::time_point start_;
+  bool tty_, shown_ = false;
+};
+
 constexpr const char* kHelp =
     "usage: dbss encode INPUT -o OUT.dbss [options]\n"
     "\n"
@@ -43,6 +70,8 @@ constexpr const char* kHelp =
     "  --error E              largest quantization error of a displacement,\n"
     "                         relative to the bounding-box diagonal, 1e-7..0.1\n"
     "                         (default 1e-4: the step is 2E x diagonal)\n"
+    "  --step S               quantization step in model units, instead of\n"
+    "                         --error (every level)\n"
     "  --effort N             zstd level for the displacements, 1..22 (default 19)\n"
     "  --dump-stages DIR      also write every stage as an OBJ into DIR:\n"
     "                         occupied cells, carved cells, triangulated shell,\n"
@@ -66,7 +95,7 @@ int usage(const std::string& message) {
 int run_encode(const std::vector<std::string_view>& args) {
   std::string input, output, dump;
   long grid = 0, faces = 0, bits = 16, levels = 3, effort = 19;
-  double error = 1e-4;
+  double error = 1e-4, step = 0;
   for (size_t i = 0; i < args.size(); ++i) {
     const std::string_view a = args[i];
     auto value = [&](std::string_view& v) {
@@ -92,6 +121,12 @@ int run_encode(const std::vector<std::string_view>& args) {
       if (!value(v) || !parse_int(v, 0, 8, levels)) return usage("--levels needs a whole number from 0 to 8");
     } else if (a == "--effort") {
       if (!value(v) || !parse_int(v, 1, 22, effort)) return usage("--effort needs a whole number from 1 to 22");
+    } else if (a == "--step") {
+      if (!value(v)) return usage("--step needs a number");
+      const std::string text(v);
+      char* end = nullptr;
+      step = std::strtod(text.c_str(), &end);
+      if (end != text.c_str() + text.size() || !(step > 0 && step < 1e30)) return usage("--step needs a positive number");
     } else if (a == "--error") {
       if (!value(v)) return usage("--error needs a number");
       const std::string text(v);
@@ -114,6 +149,7 @@ int run_encode(const std::vector<std::string_view>& args) {
   if (output.empty()) return usage("no output file (-o OUT.dbss)");
 
   using Clock = std::chrono::steady_clock;
+  Progress progress;
   const auto t0 = Clock::now();
   auto points = read_points(input);
   if (!points.ok()) {
@@ -129,6 +165,7 @@ int run_encode(const std::vector<std::string_view>& args) {
   ControlMeshOptions options;
   options.grid = static_cast<int>(grid);
   options.control_faces = static_cast<uint32_t>(faces);
+  options.on_stage = [&](const char* stage) { progress.show(stage); };
   auto stages = build_control_mesh(points.value(), options);
   if (!stages.ok()) {
     std::fprintf(stderr, "dbss encode: %s: %s\n", input.c_str(), stages.status().to_string().c_str());
@@ -173,9 +210,12 @@ int run_encode(const std::vector<std::string_view>& args) {
   const PointIndex index(pc);
   LevelEncodeOptions lo;
   lo.levels = static_cast<uint32_t>(levels);
+  // --step fixes the step; --error derives it from the diagonal.
+  if (step > 0) error = step / (2 * diagonal);
   lo.error = error;
   lo.zstd_level = static_cast<int>(effort);
   lo.threads = 2;
+  lo.on_level = [&](uint32_t l) { progress.show("sampling level " + std::to_string(l) + " of " + std::to_string(levels)); };
   auto encoded = encode_levels(decoded.value(), index, diagonal, lo);
   if (!encoded.ok()) {
     std::fprintf(stderr, "dbss encode: %s\n", encoded.status().to_string().c_str());
@@ -224,6 +264,7 @@ int run_encode(const std::vector<std::string_view>& args) {
     }
   }
 
+  progress.done();
   std::printf("%s: %zu points -> %s: %zu bytes\n", input.c_str(), pc.size(), output.c_str(), bytes.value().size());
   std::printf("%-22s %9s %10s %10s  %s\n", "stage", "ms", "vertices", "triangles", "notes");
   auto row = [](const char* name, double s, const TriangleMesh* m, const std::string& notes) {

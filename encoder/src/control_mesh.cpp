@@ -28,15 +28,21 @@ Status check_stage(const TriangleMesh& m, const MeshInfo& want, const char* stag
 
 Result<ControlMeshStages> build_control_mesh(const PointCloud& points, const ControlMeshOptions& o) {
   ControlMeshStages s;
+  auto stage = [&](const char* name) {
+    if (o.on_stage) o.on_stage(name);
+  };
+  stage("choosing the grid");
   auto t = Clock::now();
   const PointIndex index(points);
   const int grid = o.grid > 0 ? o.grid : choose_grid(points);
   s.seconds.grid = since(t);
 
+  stage("carving cells");
   t = Clock::now();
   s.cells = carve(points, grid, &s.carving);
   s.seconds.carve = since(t);
 
+  stage("triangulating");
   t = Clock::now();
   auto shell = triangulate_shell(s.cells);
   if (!shell.ok()) return shell.status();
@@ -44,12 +50,14 @@ Result<ControlMeshStages> build_control_mesh(const PointCloud& points, const Con
   s.shell_info = mesh_info(s.shell);
   s.seconds.triangulate = since(t);
 
+  stage("shrink-wrapping");
   t = Clock::now();
   s.wrapped = s.shell;
   s.wrap_stats = shrink_wrap(s.wrapped, index, o.shrink_wrap);
   s.seconds.shrink_wrap = since(t);
   if (Status st = check_stage(s.wrapped, s.shell_info, "shrink-wrapping"); !st.ok()) return st;
 
+  stage("simplifying");
   t = Clock::now();
   const uint32_t target = o.control_faces ? o.control_faces
                                           : default_control_faces(static_cast<uint32_t>(s.shell.triangle_count()), s.shell_info.genus);
@@ -59,6 +67,7 @@ Result<ControlMeshStages> build_control_mesh(const PointCloud& points, const Con
   s.seconds.simplify = since(t);
   if (Status st = check_stage(s.simplified, s.shell_info, "simplification"); !st.ok()) return st;
 
+  stage("projecting");
   t = Clock::now();
   s.control = s.simplified;
   // Smooth out any fold the collapses left, then project: the projection

@@ -20,6 +20,7 @@ Result<EncodedLevels> encode_levels(const TriangleMesh& control, const PointInde
   out.triangles.push_back(control.triangles);
   const float step = static_cast<float>(2 * o.error * diagonal);
   for (uint32_t l = 1; l <= o.levels; ++l) {
+    if (o.on_level) o.on_level(l);
     const LevelPlan plan = plan_level(t);
     const std::vector<float>& prev = out.positions.back();
     // The undisplaced level and the decoder's normals of its odd vertices.

@@ -72,7 +72,23 @@ Status write_mesh(const std::string& path, const TriangleMesh& m) {
     }
     return put(path, out);
   }
-  return Status(ErrorCode::invalid_argument, path + ": unknown mesh format (expected .ply, .obj or .off)");
+  if (ext == ".stl") {
+    std::string out(80, ' ');
+    out.replace(0, 4, "dbss");
+    auto u32 = [&](uint32_t u) {
+      const char le[4] = {char(u), char(u >> 8), char(u >> 16), char(u >> 24)};
+      out.append(le, 4);
+    };
+    u32(static_cast<uint32_t>(m.triangle_count()));
+    for (size_t f = 0; f < m.triangle_count(); ++f) {
+      for (int k = 0; k < 3; ++k) u32(0);  // normal: readers recompute it
+      for (int k = 0; k < 3; ++k)
+        for (int a = 0; a < 3; ++a) u32(std::bit_cast<uint32_t>(m.positions[3 * m.triangles[3 * f + k] + a]));
+      out.append(2, '\0');
+    }
+    return put(path, out);
+  }
+  return Status(ErrorCode::invalid_argument, path + ": unknown mesh format (expected .ply, .obj, .off or .stl)");
 }
 
 Status write_cells_obj(const std::string& path, const CellGrid& g, bool occupied_only) {

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 
 #include "dbss/decoder/mesh.h"
 #include "dbss/encoder/cell_carving.h"
@@ -18,6 +19,8 @@ struct ControlMeshOptions {
   int grid = 0;                // cells along the longest side; 0 = choose_grid()
   uint32_t control_faces = 0;  // 0 = default_control_faces()
   ShrinkWrapOptions shrink_wrap;
+  // Called with a stage's name as it starts (for progress display); may be empty.
+  std::function<void(const char*)> on_stage;
 };
 
 struct StageTimes {

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "dbss/decoder/mesh.h"
@@ -22,6 +23,7 @@ struct LevelEncodeOptions {
   double error = 1e-4;
   int zstd_level = 19;
   unsigned threads = 1;
+  std::function<void(uint32_t level)> on_level;  // called as each level starts; may be empty
 };
 
 struct LevelStats {

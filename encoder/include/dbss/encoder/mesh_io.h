@@ -14,9 +14,9 @@ namespace dbss {
 // Wavefront OBJ of a triangle mesh, written atomically.
 Status write_obj(const std::string& path, const TriangleMesh& mesh);
 
-// A triangle mesh as .obj, .off or binary little-endian .ply, chosen by the
-// extension of `path`; written atomically.  invalid_argument for another
-// extension.
+// A triangle mesh as .obj, .off, binary little-endian .ply or binary .stl,
+// chosen by the extension of `path`; written atomically.  invalid_argument
+// for another extension.
 Status write_mesh(const std::string& path, const TriangleMesh& mesh);
 
 // The outer faces of a set of cells as an OBJ quad mesh: `which` picks the
