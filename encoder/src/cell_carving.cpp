@@ -49,46 +49,15 @@ CellGrid make_grid(const PointCloud& pc, int grid) {
   return g;
 }
 
-// Steps 1-3: breadth-first from the outermost cells through empty face
-// neighbours; every empty cell reached becomes air.  Occupied cells stop the
-// carving (Step 2.1); the occupied cells it touches are the paper's set T,
-// and Steps 4-5 grow S through occupied neighbours, which we do not need to
-// store: the shell is every face between air and a non-air cell.
-void carve_from_outside(CellGrid& g) {
-  for (auto& s : g.state)
-    if (s == CellGrid::kAir) s = CellGrid::kInside;
-  std::vector<uint32_t> queue;
-  auto visit = [&](int i, int j, int k) {
-    const size_t id = g.index(i, j, k);
-    if (g.state[id] == CellGrid::kInside) {
-      g.state[id] = CellGrid::kAir;
-      queue.push_back(static_cast<uint32_t>(id));
-    }
-  };
-  for (int k = 0; k < g.n[2]; ++k)
-    for (int j = 0; j < g.n[1]; ++j)
-      for (int i = 0; i < g.n[0]; ++i)
-        if (i == 0 || j == 0 || k == 0 || i == g.n[0] - 1 || j == g.n[1] - 1 || k == g.n[2] - 1) visit(i, j, k);
-  for (size_t q = 0; q < queue.size(); ++q) {
-    const uint32_t id = queue[q];
-    const int i = static_cast<int>(id % g.n[0]), j = static_cast<int>((id / g.n[0]) % g.n[1]),
-              k = static_cast<int>(id / (size_t(g.n[0]) * g.n[1]));
-    if (i > 0) visit(i - 1, j, k);
-    if (i + 1 < g.n[0]) visit(i + 1, j, k);
-    if (j > 0) visit(i, j - 1, k);
-    if (j + 1 < g.n[1]) visit(i, j + 1, k);
-    if (k > 0) visit(i, j, k - 1);
-    if (k + 1 < g.n[2]) visit(i, j, k + 1);
-  }
-}
-
-// After filling: air that no longer reaches the outside is enclosed, so solid.
-void enclose_pockets(CellGrid& g) {
+// Breadth-first from every border cell through face neighbours whose state
+// `passable` accepts; returns which cells were reached.
+template <class Passable>
+std::vector<uint8_t> flood_from_border(const CellGrid& g, Passable passable) {
   std::vector<uint8_t> seen(g.state.size(), 0);
   std::vector<uint32_t> queue;
   auto visit = [&](int i, int j, int k) {
     const size_t id = g.index(i, j, k);
-    if (g.state[id] == CellGrid::kAir && !seen[id]) {
+    if (!seen[id] && passable(g.state[id])) {
       seen[id] = 1;
       queue.push_back(static_cast<uint32_t>(id));
     }
@@ -108,8 +77,27 @@ void enclose_pockets(CellGrid& g) {
     if (k > 0) visit(i, j, k - 1);
     if (k + 1 < g.n[2]) visit(i, j, k + 1);
   }
+  return seen;
+}
+
+// Steps 1-3: from the outermost cells through empty face neighbours; every
+// empty cell reached becomes air.  Occupied cells stop the carving (Step
+// 2.1); the occupied cells it touches are the paper's set T, and Steps 4-5
+// grow S through occupied neighbours, which we do not need to store: the
+// shell is every face between air and a non-air cell.
+void carve_from_outside(CellGrid& g) {
+  for (auto& s : g.state)
+    if (s == CellGrid::kAir) s = CellGrid::kInside;
+  const auto reached = flood_from_border(g, [](uint8_t s) { return s == CellGrid::kInside; });
   for (size_t id = 0; id < g.state.size(); ++id)
-    if (g.state[id] == CellGrid::kAir && !seen[id]) g.state[id] = CellGrid::kFilled;
+    if (reached[id]) g.state[id] = CellGrid::kAir;
+}
+
+// After filling: air that no longer reaches the outside is enclosed, so solid.
+void enclose_pockets(CellGrid& g) {
+  const auto reached = flood_from_border(g, [](uint8_t s) { return s == CellGrid::kAir; });
+  for (size_t id = 0; id < g.state.size(); ++id)
+    if (g.state[id] == CellGrid::kAir && !reached[id]) g.state[id] = CellGrid::kFilled;
 }
 
 // Carving through gaps of the sampling is stopped by a morphological
