@@ -244,6 +244,79 @@ SurfaceDistance vertices_to_points_surface(const std::vector<float>& xyz, const 
   return out;
 }
 
+namespace {
+// Whether segment pq crosses triangle abc (strictly, up to rounding).
+bool segment_hits_triangle(const V3& p, const V3& q, const V3& a, const V3& b, const V3& c) {
+  const V3 n = cross(sub(b, a), sub(c, a));
+  const double dp = dot(n, sub(p, a)), dq = dot(n, sub(q, a));
+  if ((dp > 0 && dq > 0) || (dp < 0 && dq < 0) || dp == dq) return false;
+  const double t = dp / (dp - dq);
+  const V3 x{p[0] + t * (q[0] - p[0]), p[1] + t * (q[1] - p[1]), p[2] + t * (q[2] - p[2])};
+  // Inside test by same-side signs of the three edge normals.
+  const double s1 = dot(n, cross(sub(b, a), sub(x, a)));
+  const double s2 = dot(n, cross(sub(c, b), sub(x, b)));
+  const double s3 = dot(n, cross(sub(a, c), sub(x, c)));
+  return (s1 > 0 && s2 > 0 && s3 > 0) || (s1 < 0 && s2 < 0 && s3 < 0);
+}
+bool triangles_intersect(const V3 t[3], const V3 u[3]) {
+  for (int k = 0; k < 3; ++k) {
+    if (segment_hits_triangle(t[k], t[(k + 1) % 3], u[0], u[1], u[2])) return true;
+    if (segment_hits_triangle(u[k], u[(k + 1) % 3], t[0], t[1], t[2])) return true;
+  }
+  return false;
+}
+}  // namespace
+
+std::vector<std::pair<uint32_t, uint32_t>> self_intersections(const TriangleMesh& m) {
+  const size_t nf = m.triangle_count();
+  std::vector<std::pair<uint32_t, uint32_t>> hits;
+  if (nf == 0) return hits;
+  V3 lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
+  for (size_t v = 0; v < m.vertex_count(); ++v)
+    for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], double{m.positions[3 * v + a]}), hi[a] = std::max(hi[a], double{m.positions[3 * v + a]});
+  const int res = std::max(1, static_cast<int>(std::cbrt(static_cast<double>(nf)) * 2));
+  double cell[3];
+  for (int a = 0; a < 3; ++a) cell[a] = std::max((hi[a] - lo[a]) / res, 1e-30);
+  std::vector<std::vector<uint32_t>> bins(size_t(res) * res * res);
+  auto tri = [&](size_t f, V3 out[3]) {
+    for (int k = 0; k < 3; ++k) out[k] = pos(m, m.triangles[3 * f + k]);
+  };
+  auto range = [&](size_t f, int b0[3], int b1[3]) {
+    V3 t[3];
+    tri(f, t);
+    for (int a = 0; a < 3; ++a) {
+      const double mn = std::min({t[0][a], t[1][a], t[2][a]}), mx = std::max({t[0][a], t[1][a], t[2][a]});
+      b0[a] = std::clamp(static_cast<int>((mn - lo[a]) / cell[a]), 0, res - 1);
+      b1[a] = std::clamp(static_cast<int>((mx - lo[a]) / cell[a]), 0, res - 1);
+    }
+  };
+  for (size_t f = 0; f < nf; ++f) {
+    int b0[3], b1[3];
+    range(f, b0, b1);
+    for (int z = b0[2]; z <= b1[2]; ++z)
+      for (int y = b0[1]; y <= b1[1]; ++y)
+        for (int x = b0[0]; x <= b1[0]; ++x) bins[(size_t(z) * res + y) * res + x].push_back(static_cast<uint32_t>(f));
+  }
+  for (const auto& bin : bins)
+    for (size_t i = 0; i < bin.size(); ++i)
+      for (size_t j = i + 1; j < bin.size(); ++j) {
+        const uint32_t f = bin[i], g = bin[j];
+        bool shared = false;
+        for (int k = 0; k < 3; ++k)
+          for (int l = 0; l < 3; ++l) shared |= m.triangles[3 * size_t{f} + k] == m.triangles[3 * size_t{g} + l];
+        if (shared) continue;
+        V3 t[3], u[3];
+        tri(f, t);
+        tri(g, u);
+        if (triangles_intersect(t, u)) hits.push_back({std::min(f, g), std::max(f, g)});
+      }
+  std::sort(hits.begin(), hits.end());
+  hits.erase(std::unique(hits.begin(), hits.end()), hits.end());
+  return hits;
+}
+
+size_t count_self_intersections(const TriangleMesh& m) { return self_intersections(m).size(); }
+
 bool inside_mesh(const TriangleMesh& m, const std::array<double, 3>& p) {
   // Sum of signed solid angles (Van Oosterom-Strackee): 4π inside, 0 outside.
   double total = 0;

@@ -28,6 +28,8 @@ TEST_CASE("control meshes of shapes with known genus: closed, manifold, right co
     }
     CHECK(count_foldovers(st.wrapped) == 0);
     CHECK(count_foldovers(st.control) == 0);
+    CHECK(count_self_intersections(st.wrapped) == 0);
+    CHECK(count_self_intersections(st.control) == 0);
     // The simplifier meets its (even) target exactly.
     CHECK(st.control.triangle_count() == default_control_faces(static_cast<uint32_t>(st.shell.triangle_count()), s.genus));
     // Control vertices lie on (or, where projection was refused, near) the points.
@@ -79,4 +81,13 @@ TEST_CASE("bunny scan (libcgal-demo data, skipped when absent)") {
   CHECK(info.components == 1);
   CHECK(info.genus == 0);
   CHECK(count_foldovers(r.value().control) == 0);
+}
+
+TEST_CASE("the self-intersection counter finds crossing triangles and ignores neighbours") {
+  TriangleMesh m;
+  m.positions = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0.2f, 0.2f, -1, 0.2f, 0.2f, 1, 1, 1, 0};
+  m.triangles = {0, 1, 2, 3, 4, 5};  // the second pierces the first
+  CHECK(count_self_intersections(m) == 1);
+  m.triangles = {0, 1, 2, 1, 5, 2};  // sharing an edge
+  CHECK(count_self_intersections(m) == 0);
 }

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <array>
+#include <utility>
 #include <cstdint>
 #include <vector>
 
@@ -54,6 +55,11 @@ SurfaceDistance points_to_mesh(const std::vector<float>& points_xyz, const Trian
 // Mean and largest distance from each vertex to the surface of the points,
 // taken as the least-squares plane of its 8 nearest points.
 SurfaceDistance vertices_to_points_surface(const std::vector<float>& vertices_xyz, const PointIndex& points);
+
+// Pairs (f < g) of triangles that share no vertex yet intersect, sorted; a
+// uniform grid of triangle bounds narrows the candidates.
+std::vector<std::pair<uint32_t, uint32_t>> self_intersections(const TriangleMesh& m);
+size_t count_self_intersections(const TriangleMesh& m);
 
 // Winding-number inside test of a closed, outward-oriented mesh.
 bool inside_mesh(const TriangleMesh& m, const std::array<double, 3>& p);
