@@ -98,3 +98,12 @@ endif()
 
 file(WRITE ${WORK}/text.dbss "hello, this is not a dbss file\n")
 expect_run(1 "bad_signature" ${DBSS} info ${WORK}/text.dbss)
+
+# compare: dbss against the full-vertex DSS and Draco, per level.
+expect_run(0 "usage: dbss compare" ${DBSS} compare --help)
+expect_run(1 "no input file" ${DBSS} compare)
+expect_run(1 "unknown option '--bogus'" ${DBSS} compare ${example} --bogus)
+expect_run(1 "--levels needs a whole number" ${DBSS} compare ${example} --levels x)
+expect_run(1 "missing.xyz: cannot open" ${DBSS} compare ${WORK}/missing.xyz)
+expect_run(0 "DSS all B" ${DBSS} compare ${example} --levels 2)
+expect_run(0 "\"dss_all_bytes\": [0-9]+, \"dbss_clamped\"" ${DBSS} compare ${example} --levels 1 --json --no-errors)

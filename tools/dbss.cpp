@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "dbss/format/reader.h"
+#include "compare.h"
 #include "decode.h"
 #include "encode.h"
 #include "info.h"
@@ -22,6 +23,7 @@ constexpr const char* kUsage =
     "  encode INPUT -o OUT.dbss   reconstruct a point cloud or mesh and write it\n"
     "  decode IN.dbss -o OUT      one level as a .ply, .obj or .off mesh\n"
     "  info IN.dbss [--json]      chunks, sizes, per-level counts, steps and checksum status\n"
+    "  compare INPUT [--json]     sizes and errors per level: dbss vs full-vertex DSS vs Draco\n"
     "\n"
     "Run 'dbss <command> --help' for a command's options.\n";
 
@@ -47,6 +49,7 @@ int main(int argc, char** argv) {
     if (cmd == "info") return dbss::tools::run_info(args);
     if (cmd == "encode") return dbss::tools::run_encode(args);
     if (cmd == "decode") return dbss::tools::run_decode(args);
+    if (cmd == "compare") return dbss::tools::run_compare(args);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "dbss %.*s: internal error: %s\n", static_cast<int>(cmd.size()), cmd.data(), e.what());
     return 2;

@@ -1,4 +1,5 @@
 #include "info.h"
+#include "json.h"
 
 #include <cmath>
 #include <cstdio>
@@ -21,23 +22,6 @@ constexpr const char* kHelp =
     "  --json   one JSON object on stdout instead of tables\n"
     "\n"
     "exit status: 0 file is complete and valid, 1 bad file or usage, 2 internal error\n";
-
-std::string json_string(std::string_view s) {
-  std::string out = "\"";
-  for (unsigned char ch : s) {
-    if (ch == '"' || ch == '\\') {
-      out += '\\';
-      out += static_cast<char>(ch);
-    } else if (ch < 0x20 || ch >= 0x7F) {
-      char b[8];
-      std::snprintf(b, sizeof b, "\\u%04x", ch);
-      out += b;
-    } else {
-      out += static_cast<char>(ch);
-    }
-  }
-  return out + "\"";
-}
 
 const char* coding_name(format::DisplacementCoding c) {
   return c == format::DisplacementCoding::byte_planes ? "byte_planes" : "varint";

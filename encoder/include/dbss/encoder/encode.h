@@ -1,0 +1,62 @@
+// The whole encoder: points -> control mesh stages -> Draco -> levels -> the
+// bytes of a .dbss file.  `dbss encode`, `dbss compare` and the benchmarks
+// all run this one pipeline.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "dbss/decoder/mesh.h"
+#include "dbss/encoder/control_mesh.h"
+#include "dbss/encoder/levels.h"
+#include "dbss/encoder/point_input.h"
+#include "dbss/format/container.h"
+#include "dbss/format/writer.h"
+#include "dbss/format/status.h"
+
+namespace dbss {
+
+struct EncodeOptions {
+  ControlMeshOptions control;
+  int control_bits = 16;  // Draco position bits of the control mesh, 8..30
+  uint32_t levels = 3;    // displacement levels, 0..kMaxLevelsInFormat
+  // Quantization: `step` (model units) when > 0, else derived from `error`
+  // (largest rounding error relative to the bounding-box diagonal; step = 2 *
+  // error * diagonal).
+  double error = 1e-4;
+  double step = 0;
+  int effort = 19;  // zstd level 1..22 of the displacement chunks
+  unsigned threads = 2;
+  std::string source_name;     // written into the `meta` chunk; may be empty
+  std::string encoder_version;  // likewise
+  std::function<void(const std::string&)> on_progress;  // may be empty
+};
+
+struct EncodeTimes {
+  double control = 0, draco = 0, levels = 0, serialize = 0;  // seconds
+};
+
+struct Encoding {
+  ControlMeshStages stages;
+  TriangleMesh control;           // the Draco-decoded control mesh the file holds
+  format::FileContents contents;  // what the file holds
+  std::vector<uint8_t> bytes;     // the serialized file
+  std::vector<format::TocEntry> toc;  // its chunks, in file order
+  EncodedLevels levels;           // per level: reconstruction (bit-identical to the decoder's) and stats
+  double diagonal = 0;            // of the points' bounding box, model units
+  double error = 0;               // the error target actually used (from `step` when given)
+  EncodeTimes seconds;
+};
+
+// Runs the pipeline on `points` (already checked with check_reconstructible).
+// Errors: invalid_argument for unusable points or options, internal for a
+// stage that broke an invariant (a bug).
+Result<Encoding> encode_points(const PointCloud& points, const EncodeOptions& options = {});
+
+// Bytes of the file prefix a client needs for levels 0..level: the end of
+// that level's chunk (level 0: the end of the control-mesh chunk).
+uint64_t prefix_bytes(const Encoding& e, uint32_t level);
+
+}  // namespace dbss

@@ -1,0 +1,72 @@
+#include "dbss/encoder/compare.h"
+
+#include "dbss/decoder/control_mesh.h"
+#include "dbss/encoder/control_mesh_codec.h"
+#include "dbss/encoder/dss_baseline.h"
+#include "dbss/encoder/point_index.h"
+
+namespace dbss {
+
+namespace {
+RelativeError relative(const PointIndex& index, const TriangleMesh& mesh, double diagonal) {
+  const TwoSidedDistance d = two_sided_distance(index, mesh);
+  return {d.points_to_mesh_mean / diagonal, d.mean() / diagonal, d.hausdorff() / diagonal};
+}
+}  // namespace
+
+Result<Comparison> compare_representations(const PointCloud& points, const EncodeOptions& eo, const CompareOptions& o) {
+  auto encoded = encode_points(points, eo);
+  if (!encoded.ok()) return encoded.status();
+  Comparison c;
+  c.encoding = std::move(encoded).value();
+  const Encoding& e = c.encoding;
+  const PointIndex index(points);
+  const uint32_t levels = static_cast<uint32_t>(e.levels.levels.size());
+  const float step = levels ? e.levels.levels[0].step : 0.0f;
+  std::vector<DssLevel> dss;
+  if (levels) {
+    auto d = encode_dss_baseline(e.control, index, {levels, step, eo.effort});
+    if (!d.ok()) return d.status();
+    dss = std::move(d).value();
+  }
+  const uint64_t base = prefix_bytes(e, 0);
+  uint64_t dss_all = base;
+  for (uint32_t l = 0; l <= levels; ++l) {
+    CompareRow r;
+    r.level = l;
+    const TriangleMesh mesh{e.levels.positions[l], e.levels.triangles[l]};
+    r.vertices = mesh.vertex_count();
+    r.triangles = mesh.triangle_count();
+    r.dbss_bytes = prefix_bytes(e, l);
+    if (l == 0) {
+      r.dss_level_bytes = r.dss_all_bytes = base;
+    } else {
+      const DssLevel& d = dss[l - 1];
+      r.dbss_samples = e.levels.stats[l - 1].odd;
+      r.dbss_clamped = e.levels.stats[l - 1].clamped;
+      r.dss_samples = d.samples;
+      r.dss_clamped = d.clamped;
+      r.dss_level_bytes = base + d.bytes;
+      dss_all += d.bytes;
+      r.dss_all_bytes = dss_all;
+    }
+    if (o.errors) {
+      r.dbss_error = relative(index, mesh, e.diagonal);
+      r.dss_error = l == 0 ? r.dbss_error : relative(index, dss[l - 1].mesh, e.diagonal);
+    }
+    for (int bits : o.draco_bits) {
+      auto bytes = encode_control_mesh(mesh, {bits, 0});
+      if (!bytes.ok()) return bytes.status();
+      r.draco_bytes.push_back(bytes.value().size());
+      if (o.errors) {
+        auto back = decode_control_mesh(bytes.value(), uint64_t{1} << 32, uint64_t{1} << 32);
+        if (!back.ok()) return Status(ErrorCode::internal, "Draco round trip of level " + std::to_string(l) + ": " + back.status().to_string());
+        r.draco_error.push_back(relative(index, back.value(), e.diagonal));
+      }
+    }
+    c.rows.push_back(std::move(r));
+  }
+  return c;
+}
+
+}  // namespace dbss

@@ -1,0 +1,79 @@
+#include "dbss/encoder/dss_baseline.h"
+
+#include <algorithm>
+#include <climits>
+#include <cmath>
+
+#include "dbss/decoder/topology.h"
+#include "dbss/encoder/loop_subdivision.h"
+#include "dbss/encoder/mesh_ops.h"
+#include "dbss/encoder/sampling.h"
+#include "dbss/format/container.h"
+#include "dbss/format/writer.h"
+
+namespace dbss {
+
+Result<std::vector<DssLevel>> encode_dss_baseline(const TriangleMesh& control, const PointIndex& points,
+                                                  const DssOptions& o) {
+  if (!(o.step > 0) || !std::isfinite(o.step)) return Status(ErrorCode::invalid_argument, "the DSS step must be positive");
+  auto topo = build_topology(static_cast<uint32_t>(control.vertex_count()), control.triangles);
+  if (!topo.ok()) return topo.status();
+  LevelTopology t = std::move(topo).value();
+  std::vector<float> domain = control.positions;  // the undisplaced Loop surface of the current level
+  std::vector<DssLevel> out;
+  for (uint32_t l = 1; l <= o.levels; ++l) {
+    std::vector<float> next;
+    loop_subdivide(t, domain, next);
+    t = refine_topology(t);
+    domain = std::move(next);
+
+    DssLevel d;
+    d.level = l;
+    d.mesh.triangles = t.triangles;
+    d.mesh.positions = domain;
+    const std::vector<std::array<double, 3>> normals = vertex_normals(d.mesh);
+    // Cylinder: the radius follows the level's own edges, as dbss's does; the
+    // height must also cover Loop's shrinkage, which is on the scale of the
+    // control mesh's edges (2^l times this level's), not of this level's.
+    std::vector<double> edge_sum(t.vertex_count, 0.0);
+    std::vector<uint32_t> edge_n(t.vertex_count, 0);
+    for (uint32_t e = 0; e < t.edge_count(); ++e) {
+      const uint32_t h = t.edge_half[e];
+      const uint32_t a = t.triangles[h], b = t.triangles[next_half(h)];
+      double len2 = 0;
+      for (int k = 0; k < 3; ++k) len2 += std::pow(double{domain[3 * size_t{a} + k]} - domain[3 * size_t{b} + k], 2);
+      const double len = std::sqrt(len2);
+      edge_sum[a] += len, edge_sum[b] += len, ++edge_n[a], ++edge_n[b];
+    }
+    format::Level level;
+    level.index = static_cast<uint8_t>(std::min<uint32_t>(l, 255));
+    level.step = o.step;
+    level.q.assign(t.vertex_count, 0);
+    d.samples = t.vertex_count;
+    for (uint32_t v = 0; v < t.vertex_count; ++v) {
+      const double* n = normals[v].data();
+      if (n[0] == 0 && n[1] == 0 && n[2] == 0) continue;
+      const double len = edge_n[v] ? edge_sum[v] / edge_n[v] : 0;
+      const double p[3] = {domain[3 * size_t{v}], domain[3 * size_t{v} + 1], domain[3 * size_t{v} + 2]};
+      const Sample s = sample_displacement(points, p, n, len, 0.5 * std::ldexp(len, static_cast<int>(l)));
+      d.clamped += s.clamped;
+      const double q = std::clamp(std::nearbyint(s.distance / o.step), double(-format::kMaxAbsDisplacement),
+                                  double(format::kMaxAbsDisplacement));
+      level.q[v] = static_cast<int32_t>(q);
+      const float dq = static_cast<float>(q) * o.step;
+      for (int a = 0; a < 3; ++a) d.mesh.positions[3 * size_t{v} + a] = static_cast<float>(p[a] + dq * n[a]);
+    }
+    size_t best = SIZE_MAX;
+    for (auto coding : {format::DisplacementCoding::byte_planes, format::DisplacementCoding::varint}) {
+      level.coding = coding;
+      auto data = format::encode_level(level, o.zstd_level);
+      if (!data.ok()) return data.status();
+      best = std::min(best, data.value().size());
+    }
+    d.bytes = best + format::kChunkOverhead;
+    out.push_back(std::move(d));
+  }
+  return out;
+}
+
+}  // namespace dbss

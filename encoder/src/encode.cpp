@@ -1,0 +1,119 @@
+#include "dbss/encoder/encode.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+
+#include "dbss/decoder/control_mesh.h"
+#include "dbss/decoder/topology.h"
+#include "dbss/encoder/control_mesh_codec.h"
+#include "dbss/encoder/point_index.h"
+#include "dbss/format/reader.h"
+#include "dbss/format/writer.h"
+
+namespace dbss {
+
+namespace {
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+}  // namespace
+
+Result<Encoding> encode_points(const PointCloud& pc, const EncodeOptions& o) {
+  if (o.control_bits < 8 || o.control_bits > 30) return Status(ErrorCode::invalid_argument, "control bits must be 8..30");
+  if (o.levels > format::kMaxLevelsInFormat) return Status(ErrorCode::invalid_argument, "too many levels");
+  if (pc.size() == 0) return Status(ErrorCode::invalid_argument, "no points");
+  Encoding e;
+  auto t = Clock::now();
+  ControlMeshOptions co = o.control;
+  if (!co.on_stage && o.on_progress) co.on_stage = [&](const char* s) { o.on_progress(s); };
+  auto stages = build_control_mesh(pc, co);
+  if (!stages.ok()) return stages.status();
+  e.stages = std::move(stages).value();
+  e.seconds.control = since(t);
+
+  // The file holds Draco's version of the control mesh; everything after
+  // continues from what a decoder will see.
+  t = Clock::now();
+  auto draco = encode_control_mesh(e.stages.control, {o.control_bits, 0});
+  if (!draco.ok()) return draco.status();
+  auto decoded = decode_control_mesh(draco.value(), 1u << 30, 1u << 30);
+  if (!decoded.ok()) return Status(ErrorCode::internal, "control mesh after Draco: " + decoded.status().to_string());
+  e.control = std::move(decoded).value();
+  auto topo = build_topology(static_cast<uint32_t>(e.control.vertex_count()), e.control.triangles);
+  if (!topo.ok()) return Status(ErrorCode::internal, "control mesh after Draco: " + topo.status().to_string());
+  e.seconds.draco = since(t);
+
+  format::FileContents& c = e.contents;
+  c.header.control_position_bits = static_cast<uint8_t>(o.control_bits);
+  c.header.control_vertex_count = static_cast<uint32_t>(e.control.vertex_count());
+  c.header.control_edge_count = topo.value().edge_count();
+  c.header.control_triangle_count = static_cast<uint32_t>(e.control.triangle_count());
+  c.header.bbox_min = {pc.xyz[0], pc.xyz[1], pc.xyz[2]};
+  c.header.bbox_max = c.header.bbox_min;
+  for (size_t i = 0; i < pc.size(); ++i)
+    for (int a = 0; a < 3; ++a) {
+      c.header.bbox_min[a] = std::min(c.header.bbox_min[a], pc.xyz[3 * i + a]);
+      c.header.bbox_max[a] = std::max(c.header.bbox_max[a], pc.xyz[3 * i + a]);
+    }
+  c.control_mesh = std::move(draco).value();
+  double diag2 = 0;
+  for (int a = 0; a < 3; ++a) diag2 += std::pow(double(c.header.bbox_max[a]) - c.header.bbox_min[a], 2);
+  e.diagonal = std::sqrt(diag2);
+
+  t = Clock::now();
+  const PointIndex index(pc);
+  LevelEncodeOptions lo;
+  lo.levels = o.levels;
+  e.error = o.step > 0 ? o.step / (2 * e.diagonal) : o.error;
+  lo.error = e.error;
+  lo.zstd_level = o.effort;
+  lo.threads = std::max(1u, o.threads);
+  if (o.on_progress)
+    lo.on_level = [&](uint32_t l) {
+      o.on_progress("sampling level " + std::to_string(l) + " of " + std::to_string(o.levels));
+    };
+  auto encoded = encode_levels(e.control, index, e.diagonal, lo);
+  if (!encoded.ok()) return encoded.status();
+  e.levels = std::move(encoded).value();
+  e.seconds.levels = since(t);
+
+  t = Clock::now();
+  c.header.level_count = static_cast<uint8_t>(o.levels);
+  c.header.error_target = static_cast<float>(e.error);
+  c.levels = e.levels.levels;
+  char error_text[32];
+  std::snprintf(error_text, sizeof error_text, "%g", e.error);
+  const std::string params = "grid=" + std::to_string(e.stages.carving.grid) + " control-faces=" +
+                             std::to_string(e.stages.control.triangle_count()) + " control-bits=" +
+                             std::to_string(o.control_bits) + " levels=" + std::to_string(o.levels) +
+                             " error=" + error_text + " effort=" + std::to_string(o.effort);
+  c.metadata = {{"encoder", "dbss " + (o.encoder_version.empty() ? std::string("unknown") : o.encoder_version)},
+                {"encoder.params", params}};
+  if (!o.source_name.empty()) c.metadata.push_back({"source", o.source_name});
+  auto bytes = format::serialize(c, {o.effort});
+  if (!bytes.ok()) return bytes.status();
+  e.bytes = std::move(bytes).value();
+  format::Limits limits;  // our own file: only the format's ceilings apply
+  limits.max_levels = format::kMaxLevelsInFormat;
+  limits.max_vertices = uint64_t{1} << 62;
+  limits.max_file_size = uint64_t{1} << 62;
+  format::Reader reader(limits);
+  if (Status s = reader.feed(e.bytes); !s.ok()) return Status(ErrorCode::internal, "own file does not read back: " + s.to_string());
+  if (Status s = reader.finish(); !s.ok()) return Status(ErrorCode::internal, "own file does not read back: " + s.to_string());
+  e.toc = reader.toc();
+  e.seconds.serialize = since(t);
+  return e;
+}
+
+uint64_t prefix_bytes(const Encoding& e, uint32_t level) {
+  // The chunk of level l is the l-th LEVL after CTRL; level 0 ends with CTRL.
+  uint32_t seen = 0;
+  for (const format::TocEntry& t : e.toc) {
+    if (t.type == format::kCtrl && level == 0) return t.end();
+    if (t.type == format::kLevl && ++seen == level) return t.end();
+  }
+  return e.bytes.size();
+}
+
+}  // namespace dbss

@@ -1,0 +1,197 @@
+#include "dbss/encoder/surface_distance.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+
+namespace dbss {
+
+namespace {
+inline double dot3(const double* a, const double* b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+inline void sub3(const double* a, const double* b, double* o) { o[0] = a[0] - b[0], o[1] = a[1] - b[1], o[2] = a[2] - b[2]; }
+inline double dist2(const double* a, const double* b) {
+  double d[3];
+  sub3(a, b, d);
+  return dot3(d, d);
+}
+// Squared distance from p to an axis-aligned box (0 inside).
+inline double box_distance2(const double* p, const double* lo, const double* hi) {
+  double s = 0;
+  for (int a = 0; a < 3; ++a) {
+    const double d = p[a] < lo[a] ? lo[a] - p[a] : (p[a] > hi[a] ? p[a] - hi[a] : 0.0);
+    s += d * d;
+  }
+  return s;
+}
+constexpr uint32_t kLeafSize = 4;
+}  // namespace
+
+double point_triangle_distance2(const double p[3], const double a[3], const double b[3], const double c[3]) {
+  // Voronoi regions of the triangle's corners, edges and face, in turn.
+  double ab[3], ac[3], ap[3];
+  sub3(b, a, ab), sub3(c, a, ac), sub3(p, a, ap);
+  const double d1 = dot3(ab, ap), d2 = dot3(ac, ap);
+  if (d1 <= 0 && d2 <= 0) return dist2(p, a);
+  double bp[3];
+  sub3(p, b, bp);
+  const double d3 = dot3(ab, bp), d4 = dot3(ac, bp);
+  if (d3 >= 0 && d4 <= d3) return dist2(p, b);
+  double cp[3];
+  sub3(p, c, cp);
+  const double d5 = dot3(ab, cp), d6 = dot3(ac, cp);
+  if (d6 >= 0 && d5 <= d6) return dist2(p, c);
+  auto on_segment = [&](const double* s, const double* dir, double t) {
+    const double x[3] = {s[0] + t * dir[0], s[1] + t * dir[1], s[2] + t * dir[2]};
+    return dist2(p, x);
+  };
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) return on_segment(a, ab, d1 / (d1 - d3));
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) return on_segment(a, ac, d2 / (d2 - d6));
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
+    const double bc[3] = {c[0] - b[0], c[1] - b[1], c[2] - b[2]};
+    return on_segment(b, bc, (d4 - d3) / ((d4 - d3) + (d5 - d6)));
+  }
+  const double sum = va + vb + vc;
+  if (!(sum > 0)) {
+    // Degenerate (collinear corners) and not caught above: the closest of the
+    // three edges.
+    const double bc[3] = {c[0] - b[0], c[1] - b[1], c[2] - b[2]};
+    auto seg = [&](const double* s, const double* dir) {
+      const double l2 = dot3(dir, dir);
+      double sp[3];
+      sub3(p, s, sp);
+      const double t = l2 > 0 ? std::clamp(dot3(sp, dir) / l2, 0.0, 1.0) : 0.0;
+      return on_segment(s, dir, t);
+    };
+    return std::min({seg(a, ab), seg(a, ac), seg(b, bc)});
+  }
+  const double v = vb / sum, w = vc / sum;
+  const double x[3] = {a[0] + ab[0] * v + ac[0] * w, a[1] + ab[1] * v + ac[1] * w, a[2] + ab[2] * v + ac[2] * w};
+  return dist2(p, x);
+}
+
+TriangleTree::TriangleTree(const TriangleMesh& m) {
+  const size_t nf = m.triangle_count();
+  if (nf == 0) return;
+  std::vector<uint32_t> order(nf);
+  std::iota(order.begin(), order.end(), 0u);
+  std::vector<double> centroid(3 * nf);
+  for (size_t f = 0; f < nf; ++f)
+    for (int a = 0; a < 3; ++a)
+      centroid[3 * f + a] = (double{m.positions[3 * size_t{m.triangles[3 * f]} + a]} +
+                             m.positions[3 * size_t{m.triangles[3 * f + 1]} + a] +
+                             m.positions[3 * size_t{m.triangles[3 * f + 2]} + a]) / 3;
+  // Median splits along the longest axis of the centroids' bounds; nodes are
+  // built in a work list so depth never touches the call stack.
+  nodes_.reserve(2 * (nf / kLeafSize + 1));
+  nodes_.push_back({{}, {}, 0, static_cast<uint32_t>(nf)});
+  for (size_t i = 0; i < nodes_.size(); ++i) {
+    const uint32_t first = nodes_[i].first, count = nodes_[i].count;
+    Node& n = nodes_[i];
+    for (int a = 0; a < 3; ++a) n.lo[a] = std::numeric_limits<double>::infinity(), n.hi[a] = -n.lo[a];
+    double clo[3] = {n.lo[0], n.lo[1], n.lo[2]}, chi[3] = {n.hi[0], n.hi[1], n.hi[2]};
+    for (uint32_t j = first; j < first + count; ++j) {
+      const uint32_t f = order[j];
+      for (int k = 0; k < 3; ++k)
+        for (int a = 0; a < 3; ++a) {
+          const double x = m.positions[3 * size_t{m.triangles[3 * size_t{f} + k]} + a];
+          n.lo[a] = std::min(n.lo[a], x), n.hi[a] = std::max(n.hi[a], x);
+        }
+      for (int a = 0; a < 3; ++a) clo[a] = std::min(clo[a], centroid[3 * f + a]), chi[a] = std::max(chi[a], centroid[3 * f + a]);
+    }
+    if (count <= kLeafSize) continue;
+    int axis = 0;
+    for (int a = 1; a < 3; ++a)
+      if (chi[a] - clo[a] > chi[axis] - clo[axis]) axis = a;
+    const uint32_t half = count / 2;
+    std::nth_element(order.begin() + first, order.begin() + first + half, order.begin() + first + count,
+                     [&](uint32_t x, uint32_t y) { return centroid[3 * x + axis] < centroid[3 * y + axis]; });
+    const uint32_t child = static_cast<uint32_t>(nodes_.size());
+    nodes_[i].first = child;
+    nodes_[i].count = 0;
+    nodes_.push_back({{}, {}, first, half});
+    nodes_.push_back({{}, {}, first + half, count - half});
+  }
+  corners_.resize(9 * nf);
+  for (size_t j = 0; j < nf; ++j)
+    for (int k = 0; k < 3; ++k)
+      for (int a = 0; a < 3; ++a) corners_[9 * j + 3 * k + a] = m.positions[3 * size_t{m.triangles[3 * size_t{order[j]} + k]} + a];
+}
+
+double TriangleTree::distance(const double p[3]) const {
+  double best = std::numeric_limits<double>::infinity();
+  if (nodes_.empty()) return best;
+  uint32_t stack[128];
+  int top = 0;
+  stack[top++] = 0;
+  while (top > 0) {
+    const Node& n = nodes_[stack[--top]];
+    if (box_distance2(p, n.lo, n.hi) >= best) continue;
+    if (n.count > 0) {
+      for (uint32_t j = n.first; j < n.first + n.count; ++j) {
+        const double* t = &corners_[9 * size_t{j}];
+        best = std::min(best, point_triangle_distance2(p, t, t + 3, t + 6));
+      }
+      continue;
+    }
+    // Nearer child last, so it is popped first and tightens `best` early.
+    const Node& l = nodes_[n.first];
+    const Node& r = nodes_[n.first + 1];
+    const bool left_first = box_distance2(p, l.lo, l.hi) <= box_distance2(p, r.lo, r.hi);
+    stack[top++] = left_first ? n.first + 1 : n.first;
+    stack[top++] = left_first ? n.first : n.first + 1;
+  }
+  return std::sqrt(best);
+}
+
+TwoSidedDistance two_sided_distance(const PointIndex& index, const TriangleMesh& mesh) {
+  TwoSidedDistance out;
+  const PointCloud& pc = index.points();
+  if (pc.size() == 0 || mesh.triangle_count() == 0) return out;
+  const TriangleTree tree(mesh);
+  double sum = 0;
+  for (size_t i = 0; i < pc.size(); ++i) {
+    const double p[3] = {pc.xyz[3 * i], pc.xyz[3 * i + 1], pc.xyz[3 * i + 2]};
+    const double d = tree.distance(p);
+    sum += d;
+    out.points_to_mesh_max = std::max(out.points_to_mesh_max, d);
+  }
+  out.points_to_mesh_mean = sum / static_cast<double>(pc.size());
+
+  const double spacing = std::max(point_spacing(index, 1, 0.5), 1e-12);
+  double weighted = 0, area_sum = 0;
+  for (size_t f = 0; f < mesh.triangle_count(); ++f) {
+    double c[3][3];
+    for (int k = 0; k < 3; ++k)
+      for (int a = 0; a < 3; ++a) c[k][a] = mesh.positions[3 * size_t{mesh.triangles[3 * f + k]} + a];
+    const double longest = std::sqrt(std::max({dist2(c[0], c[1]), dist2(c[1], c[2]), dist2(c[2], c[0])}));
+    const int k = static_cast<int>(std::clamp(std::ceil(longest / spacing), 1.0, 64.0));
+    double e1[3], e2[3], nrm[3];
+    sub3(c[1], c[0], e1), sub3(c[2], c[0], e2);
+    nrm[0] = e1[1] * e2[2] - e1[2] * e2[1], nrm[1] = e1[2] * e2[0] - e1[0] * e2[2], nrm[2] = e1[0] * e2[1] - e1[1] * e2[0];
+    const double area = 0.5 * std::sqrt(dot3(nrm, nrm));
+    const size_t samples = size_t(k + 1) * size_t(k + 2) / 2;
+    double tri_sum = 0;
+    for (int i = 0; i <= k; ++i)
+      for (int j = 0; i + j <= k; ++j) {
+        const double u = double(i) / k, v = double(j) / k;
+        const float q[3] = {static_cast<float>(c[0][0] + u * e1[0] + v * e2[0]),
+                            static_cast<float>(c[0][1] + u * e1[1] + v * e2[1]),
+                            static_cast<float>(c[0][2] + u * e1[2] + v * e2[2])};
+        const float* x = &pc.xyz[3 * size_t{index.nearest(q)}];
+        const double d = std::sqrt(std::pow(double{q[0]} - x[0], 2) + std::pow(double{q[1]} - x[1], 2) + std::pow(double{q[2]} - x[2], 2));
+        tri_sum += d;
+        out.mesh_to_points_max = std::max(out.mesh_to_points_max, d);
+      }
+    out.mesh_samples += samples;
+    weighted += area * tri_sum / static_cast<double>(samples);
+    area_sum += area;
+  }
+  out.mesh_to_points_mean = area_sum > 0 ? weighted / area_sum : 0;
+  return out;
+}
+
+}  // namespace dbss

@@ -1,0 +1,79 @@
+#include "encode_options.h"
+
+#include <charconv>
+#include <cstdlib>
+
+namespace dbss::tools {
+
+const char* const kEncodeOptionsHelp =
+    "  --grid N               cells along the longest side for cell carving,\n"
+    "                         2..1024 (default: the finest grid the point\n"
+    "                         spacing keeps closed)\n"
+    "  --control-faces F      triangles of the control mesh, even, >= 4\n"
+    "                         (default: an eighth of the carved shell's, at\n"
+    "                         least 96 + 64 per handle, at most 4000)\n"
+    "  --control-bits B       Draco position bits of the control mesh, 8..30\n"
+    "                         (default 16)\n"
+    "  --levels L             subdivision levels with displacements, 0..8\n"
+    "                         (default 3)\n"
+    "  --error E              largest quantization error of a displacement,\n"
+    "                         relative to the bounding-box diagonal, 1e-7..0.1\n"
+    "                         (default 1e-4: the step is 2E x diagonal)\n"
+    "  --step S               quantization step in model units, instead of\n"
+    "                         --error (every level)\n"
+    "  --effort N             zstd level for the displacements, 1..22 (default 19)\n";
+
+bool parse_int(std::string_view s, long lo, long hi, long& out) {
+  const auto r = std::from_chars(s.data(), s.data() + s.size(), out);
+  return r.ec == std::errc() && r.ptr == s.data() + s.size() && out >= lo && out <= hi;
+}
+
+namespace {
+bool parse_double(std::string_view s, double& out) {
+  const std::string text(s);
+  char* end = nullptr;
+  out = std::strtod(text.c_str(), &end);
+  return !text.empty() && end == text.c_str() + text.size();
+}
+}  // namespace
+
+OptionParse parse_encode_option(const std::vector<std::string_view>& args, size_t& i, EncodeOptions& o,
+                                std::string& error) {
+  const std::string_view a = args[i];
+  const bool known = a == "--grid" || a == "--control-faces" || a == "--control-bits" || a == "--levels" ||
+                     a == "--error" || a == "--step" || a == "--effort";
+  if (!known) return OptionParse::not_mine;
+  std::string_view v;
+  if (i + 1 < args.size()) v = args[++i];
+  else {
+    error = std::string(a) + " needs a value";
+    return OptionParse::bad;
+  }
+  long n = 0;
+  double x = 0;
+  if (a == "--grid") {
+    if (!parse_int(v, 2, 1024, n)) return error = "--grid needs a whole number from 2 to 1024", OptionParse::bad;
+    o.control.grid = static_cast<int>(n);
+  } else if (a == "--control-faces") {
+    if (!parse_int(v, 4, 1 << 24, n) || n % 2) return error = "--control-faces needs an even whole number of at least 4", OptionParse::bad;
+    o.control.control_faces = static_cast<uint32_t>(n);
+  } else if (a == "--control-bits") {
+    if (!parse_int(v, 8, 30, n)) return error = "--control-bits needs a whole number from 8 to 30", OptionParse::bad;
+    o.control_bits = static_cast<int>(n);
+  } else if (a == "--levels") {
+    if (!parse_int(v, 0, 8, n)) return error = "--levels needs a whole number from 0 to 8", OptionParse::bad;
+    o.levels = static_cast<uint32_t>(n);
+  } else if (a == "--effort") {
+    if (!parse_int(v, 1, 22, n)) return error = "--effort needs a whole number from 1 to 22", OptionParse::bad;
+    o.effort = static_cast<int>(n);
+  } else if (a == "--step") {
+    if (!parse_double(v, x) || !(x > 0 && x < 1e30)) return error = "--step needs a positive number", OptionParse::bad;
+    o.step = x;
+  } else {
+    if (!parse_double(v, x) || !(x >= 1e-7 && x <= 0.1)) return error = "--error needs a number from 1e-7 to 0.1", OptionParse::bad;
+    o.error = x;
+  }
+  return OptionParse::ok;
+}
+
+}  // namespace dbss::tools
