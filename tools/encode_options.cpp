@@ -10,7 +10,7 @@ const char* const kEncodeOptionsHelp =
     "                         2..1024 (default: the finest grid the point\n"
     "                         spacing keeps closed)\n"
     "  --control-faces F      triangles of the control mesh, even, >= 4\n"
-    "                         (default: an eighth of the carved shell's, at\n"
+    "                         (default: a 24th of the carved shell's, at\n"
     "                         least 96 + 64 per handle, at most 4000)\n"
     "  --control-bits B       Draco position bits of the control mesh, 8..30\n"
     "                         (default 16)\n"

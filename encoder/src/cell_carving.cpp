@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <thread>
 
 #include "dbss/encoder/point_index.h"
 
@@ -205,21 +206,101 @@ CellGrid carve(const PointCloud& pc, int grid, CarvingStats* stats) {
   return g;
 }
 
+CarvingShape carving_shape(const CellGrid& g) {
+  CarvingShape out;
+  // Euler characteristic of the union of the solid cells as closed cubes:
+  // count each vertex, edge, face and cube of the cell complex once.  A
+  // lattice point (or edge, face) belongs to the union if any solid cell
+  // contains it.
+  auto solid = [&](int i, int j, int k) {
+    return i >= 0 && j >= 0 && k >= 0 && i < g.n[0] && j < g.n[1] && k < g.n[2] && g.state[g.index(i, j, k)] != CellGrid::kAir;
+  };
+  int64_t v = 0, e = 0, f = 0, c = 0;
+  for (int k = 0; k <= g.n[2]; ++k)
+    for (int j = 0; j <= g.n[1]; ++j)
+      for (int i = 0; i <= g.n[0]; ++i) {
+        // Cells around lattice point (i, j, k) are (i-1..i, j-1..j, k-1..k).
+        bool s[2][2][2];
+        bool any = false;
+        for (int dk = 0; dk < 2; ++dk)
+          for (int dj = 0; dj < 2; ++dj)
+            for (int di = 0; di < 2; ++di) any |= (s[dk][dj][di] = solid(i - 1 + di, j - 1 + dj, k - 1 + dk));
+        if (!any) continue;
+        ++v;
+        // The edges from this point in +x, +y, +z: each touched by 4 cells.
+        if (s[0][0][1] || s[0][1][1] || s[1][0][1] || s[1][1][1]) ++e;  // +x: cells with di = 1
+        if (s[0][1][0] || s[0][1][1] || s[1][1][0] || s[1][1][1]) ++e;  // +y: dj = 1
+        if (s[1][0][0] || s[1][0][1] || s[1][1][0] || s[1][1][1]) ++e;  // +z: dk = 1
+        // The faces from this point in +xy, +xz, +yz: each touched by 2 cells.
+        if (s[0][1][1] || s[1][1][1]) ++f;  // xy face: di = 1, dj = 1
+        if (s[1][0][1] || s[1][1][1]) ++f;  // xz: di = 1, dk = 1
+        if (s[1][1][0] || s[1][1][1]) ++f;  // yz: dj = 1, dk = 1
+        if (s[1][1][1]) ++c;
+      }
+  out.euler = v - e + f - c;
+  size_t inside = 0;
+  for (uint8_t st : g.state) inside += st == CellGrid::kInside || st == CellGrid::kFilled;
+  out.inside_volume = static_cast<double>(inside) * g.cell * g.cell * g.cell;
+  return out;
+}
+
 int choose_grid(const PointCloud& pc, int max_grid) {
-  // Closed means: no gap in the sampled shell is wider than the two cells
-  // the closing in carve() bridges.  Gaps are measured by the spacing of the
-  // points: the 95th percentile of each point's distance to its 6th nearest
-  // neighbour.  A cell of 1.5 such spacings leaves every gap of that size
-  // well inside one cell, so the finest closed grid is the longest side over
-  // 1.5 spacings.
+  // "Closed" is tested on the carving itself.  Grids are stepped finer, from
+  // cells of two spacings down to one (the spacing: the 99th percentile of
+  // the points' nearest-neighbour distances; scans are sampled unevenly, and
+  // a gap one spacing wide is where carving starts to leak), and a grid
+  // leaks when carving gets inside the surface.  A leak grows with every
+  // finer grid and shows in the data alone: the enclosed volume collapses
+  // (under half the previous grid's), the solid's Euler characteristic drops
+  // by more than one handle at once, or the carved solid needs more than a
+  // few cells filled to stay manifold (gaps punched through thin walls).  A
+  // true change of topology at a finer grid, a false handle opening or two
+  // parts separating, moves the Euler characteristic by one or two and needs
+  // no such repairs.  A leak can begin a step before it shows, so the result
+  // is the grid two steps before the first leaking one (or the finest grid
+  // tried when none leaks).
   std::array<double, 3> lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
   for (size_t i = 0; i < pc.size(); ++i)
     for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], double{pc.xyz[3 * i + a]}), hi[a] = std::max(hi[a], double{pc.xyz[3 * i + a]});
   const double longest = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
   const PointIndex index(pc);
-  const double spacing = point_spacing(index, 6, 0.95);
-  if (!(spacing > 0)) return 8;
-  return std::clamp(static_cast<int>(longest / (1.5 * spacing)), 8, max_grid);
+  const double spacing = point_spacing(index, 1, 0.99);
+  if (!(spacing > 0) || !(longest > 0)) return 8;
+  max_grid = std::max(max_grid, 8);
+  const int finest = std::clamp(static_cast<int>(longest / spacing), 8, max_grid);
+  int grid = std::clamp(static_cast<int>(longest / (2 * spacing)), 8, finest);
+  std::vector<int> grids{grid};
+  while (grids.back() < finest) grids.push_back(std::min(finest, grids.back() + std::max(1, grids.back() / 12)));
+  struct Trial {
+    CarvingShape shape;
+    CarvingStats stats;
+  };
+  auto trial = [&](int g) {
+    Trial t;
+    t.shape = carving_shape(carve(pc, g, &t.stats));
+    return t;
+  };
+  // Grids are tried two at a time, one per core; the choice is the same as
+  // trying them one by one.
+  std::vector<Trial> tried{trial(grids[0])};
+  for (size_t i = 1; i < grids.size(); ++i) {
+    if (i + 1 < grids.size() && tried.size() == i) {
+      Trial second;
+      std::thread worker([&] { second = trial(grids[i + 1]); });
+      tried.push_back(trial(grids[i]));
+      worker.join();
+      tried.push_back(second);
+    } else if (tried.size() == i) {
+      tried.push_back(trial(grids[i]));
+    }
+    const Trial& prev = tried[i - 1];
+    const Trial& cur = tried[i];
+    const bool collapsed = cur.shape.inside_volume < 0.5 * prev.shape.inside_volume;
+    const bool torn = cur.shape.euler < prev.shape.euler - 2;
+    const bool patched = cur.stats.repaired > std::max<size_t>(2, cur.stats.occupied / 2000);
+    if (collapsed || torn || patched) return grids[i >= 2 ? i - 2 : 0];
+  }
+  return grids.back();
 }
 
 }  // namespace dbss

@@ -73,24 +73,16 @@ Result<ControlMeshStages> build_control_mesh(const PointCloud& points, const Con
   // Smooth out any fold the collapses left, then project: the projection
   // refuses moves that fold, so the control mesh ends fold-free.
   s.untangled = untangle_folds(s.control);
+  // Collapses can make distant sheets cross; projection below keeps the
+  // mesh free of crossings only if it starts free of them.
+  s.untangled += relax_self_intersections(s.control);
   const std::vector<float> before = s.control.positions;
+  // A vertex whose move was refused may go once its neighbours have moved.
   s.projection_skipped = project_to_points(s.control, index);
+  for (int again = 0; again < 3 && s.projection_skipped > 0; ++again) s.projection_skipped = project_to_points(s.control, index);
   // Projection checks folds only locally; on thin parts a vertex can still
-  // pass through the opposite side.  Put the vertices of crossing triangles
-  // back where they were before projecting (where the mesh did not cross).
-  for (int round = 0; round < 8; ++round) {
-    const auto crossing = self_intersections(s.control);
-    if (crossing.empty()) break;
-    for (const auto& [f, g] : crossing)
-      for (uint32_t tri : {f, g})
-        for (int k = 0; k < 3; ++k) {
-          const uint32_t v = s.control.triangles[3 * size_t{tri} + k];
-          float* p = &s.control.positions[3 * size_t{v}];
-          const float* b = &before[3 * size_t{v}];
-          if (p[0] != b[0] || p[1] != b[1] || p[2] != b[2]) ++s.projection_skipped;
-          p[0] = b[0], p[1] = b[1], p[2] = b[2];
-        }
-  }
+  // pass through the opposite side.
+  s.projection_skipped += undo_self_intersections(s.control, before);
   s.seconds.project = since(t);
   return s;
 }

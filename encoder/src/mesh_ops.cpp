@@ -271,51 +271,151 @@ std::vector<std::pair<uint32_t, uint32_t>> self_intersections(const TriangleMesh
   const size_t nf = m.triangle_count();
   std::vector<std::pair<uint32_t, uint32_t>> hits;
   if (nf == 0) return hits;
+  // Triangle bounds, and cubic bins about twice the mean bound's extent, so
+  // a triangle falls into a handful of bins (counted, then filled: CSR).
+  std::vector<float> box(6 * nf);
   V3 lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
-  for (size_t v = 0; v < m.vertex_count(); ++v)
-    for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], double{m.positions[3 * v + a]}), hi[a] = std::max(hi[a], double{m.positions[3 * v + a]});
-  const int res = std::max(1, static_cast<int>(std::cbrt(static_cast<double>(nf)) * 2));
-  double cell[3];
-  for (int a = 0; a < 3; ++a) cell[a] = std::max((hi[a] - lo[a]) / res, 1e-30);
-  std::vector<std::vector<uint32_t>> bins(size_t(res) * res * res);
-  auto tri = [&](size_t f, V3 out[3]) {
-    for (int k = 0; k < 3; ++k) out[k] = pos(m, m.triangles[3 * f + k]);
-  };
-  auto range = [&](size_t f, int b0[3], int b1[3]) {
-    V3 t[3];
-    tri(f, t);
+  double extent = 0;
+  for (size_t f = 0; f < nf; ++f) {
+    float* b = &box[6 * f];
     for (int a = 0; a < 3; ++a) {
-      const double mn = std::min({t[0][a], t[1][a], t[2][a]}), mx = std::max({t[0][a], t[1][a], t[2][a]});
-      b0[a] = std::clamp(static_cast<int>((mn - lo[a]) / cell[a]), 0, res - 1);
-      b1[a] = std::clamp(static_cast<int>((mx - lo[a]) / cell[a]), 0, res - 1);
+      const float x = m.positions[3 * size_t{m.triangles[3 * f]} + a], y = m.positions[3 * size_t{m.triangles[3 * f + 1]} + a],
+                  z = m.positions[3 * size_t{m.triangles[3 * f + 2]} + a];
+      b[a] = std::min({x, y, z}), b[3 + a] = std::max({x, y, z});
+      lo[a] = std::min(lo[a], double{b[a]}), hi[a] = std::max(hi[a], double{b[3 + a]});
+      extent += b[3 + a] - b[a];
+    }
+  }
+  double cell = std::max(2 * extent / (3.0 * nf), 1e-30);
+  // At most about 4 bins per triangle overall, however the mesh is spread.
+  int n[3];
+  for (;;) {
+    for (int a = 0; a < 3; ++a) n[a] = std::max(1, static_cast<int>((hi[a] - lo[a]) / cell) + 1);
+    if (double(n[0]) * n[1] * n[2] <= 4.0 * nf + 64) break;
+    cell *= 1.5;
+  }
+  auto bin_range = [&](size_t f, int b0[3], int b1[3]) {
+    for (int a = 0; a < 3; ++a) {
+      b0[a] = std::clamp(static_cast<int>((box[6 * f + a] - lo[a]) / cell), 0, n[a] - 1);
+      b1[a] = std::clamp(static_cast<int>((box[6 * f + 3 + a] - lo[a]) / cell), 0, n[a] - 1);
     }
   };
-  for (size_t f = 0; f < nf; ++f) {
-    int b0[3], b1[3];
-    range(f, b0, b1);
-    for (int z = b0[2]; z <= b1[2]; ++z)
-      for (int y = b0[1]; y <= b1[1]; ++y)
-        for (int x = b0[0]; x <= b1[0]; ++x) bins[(size_t(z) * res + y) * res + x].push_back(static_cast<uint32_t>(f));
+  const size_t nbins = size_t(n[0]) * n[1] * n[2];
+  std::vector<uint32_t> start(nbins + 1, 0), items;
+  for (int pass = 0; pass < 2; ++pass) {
+    for (size_t f = 0; f < nf; ++f) {
+      int b0[3], b1[3];
+      bin_range(f, b0, b1);
+      for (int z = b0[2]; z <= b1[2]; ++z)
+        for (int y = b0[1]; y <= b1[1]; ++y)
+          for (int x = b0[0]; x <= b1[0]; ++x) {
+            const size_t id = (size_t(z) * n[1] + y) * n[0] + x;
+            if (pass == 0) ++start[id + 1];
+            else items[start[id]++] = static_cast<uint32_t>(f);
+          }
+    }
+    if (pass == 0) {
+      for (size_t i = 0; i < nbins; ++i) start[i + 1] += start[i];
+      items.resize(start[nbins]);
+    }
   }
-  for (const auto& bin : bins)
-    for (size_t i = 0; i < bin.size(); ++i)
-      for (size_t j = i + 1; j < bin.size(); ++j) {
-        const uint32_t f = bin[i], g = bin[j];
+  // The fill pass moved each start to the next bin's; shift back.
+  for (size_t i = nbins; i > 0; --i) start[i] = start[i - 1];
+  start[0] = 0;
+  for (size_t id = 0; id < nbins; ++id) {
+    const int bx = static_cast<int>(id % n[0]), by = static_cast<int>((id / n[0]) % n[1]), bz = static_cast<int>(id / (size_t(n[0]) * n[1]));
+    for (uint32_t i = start[id]; i < start[id + 1]; ++i)
+      for (uint32_t j = i + 1; j < start[id + 1]; ++j) {
+        const uint32_t f = items[i], g = items[j];
+        const float* bf = &box[6 * size_t{f}];
+        const float* bg = &box[6 * size_t{g}];
+        bool apart = false;
+        for (int a = 0; a < 3; ++a) apart |= bf[a] > bg[3 + a] || bg[a] > bf[3 + a];
+        if (apart) continue;
+        // Test each pair once: in the bin holding the low corner of the
+        // overlap of the two bounds.
+        const int ox = std::clamp(static_cast<int>((std::max(bf[0], bg[0]) - lo[0]) / cell), 0, n[0] - 1);
+        const int oy = std::clamp(static_cast<int>((std::max(bf[1], bg[1]) - lo[1]) / cell), 0, n[1] - 1);
+        const int oz = std::clamp(static_cast<int>((std::max(bf[2], bg[2]) - lo[2]) / cell), 0, n[2] - 1);
+        if (ox != bx || oy != by || oz != bz) continue;
         bool shared = false;
         for (int k = 0; k < 3; ++k)
           for (int l = 0; l < 3; ++l) shared |= m.triangles[3 * size_t{f} + k] == m.triangles[3 * size_t{g} + l];
         if (shared) continue;
         V3 t[3], u[3];
-        tri(f, t);
-        tri(g, u);
+        for (int k = 0; k < 3; ++k) t[k] = pos(m, m.triangles[3 * size_t{f} + k]), u[k] = pos(m, m.triangles[3 * size_t{g} + k]);
         if (triangles_intersect(t, u)) hits.push_back({std::min(f, g), std::max(f, g)});
       }
+  }
   std::sort(hits.begin(), hits.end());
-  hits.erase(std::unique(hits.begin(), hits.end()), hits.end());
   return hits;
 }
 
 size_t count_self_intersections(const TriangleMesh& m) { return self_intersections(m).size(); }
+
+size_t relax_self_intersections(TriangleMesh& m, int rounds) {
+  size_t moved = 0;
+  const Adjacency adj = vertex_adjacency(m);
+  for (int round = 0; round < rounds; ++round) {
+    const auto crossing = self_intersections(m);
+    if (crossing.empty()) break;
+    std::vector<uint32_t> verts;
+    for (const auto& [f, g] : crossing)
+      for (uint32_t tri : {f, g})
+        for (int k = 0; k < 3; ++k) verts.push_back(m.triangles[3 * size_t{tri} + k]);
+    std::sort(verts.begin(), verts.end());
+    verts.erase(std::unique(verts.begin(), verts.end()), verts.end());
+    // Jacobi: every listed vertex goes to its neighbours' mean as they were.
+    std::vector<float> to(3 * verts.size(), 0.0f);
+    for (size_t i = 0; i < verts.size(); ++i) {
+      const uint32_t v = verts[i];
+      const uint32_t deg = adj.offset[v + 1] - adj.offset[v];
+      if (deg == 0) continue;
+      double sum[3] = {0, 0, 0};
+      for (uint32_t j = adj.offset[v]; j < adj.offset[v + 1]; ++j)
+        for (int a = 0; a < 3; ++a) sum[a] += m.positions[3 * size_t{adj.index[j]} + a];
+      for (int a = 0; a < 3; ++a) to[3 * i + a] = static_cast<float>(sum[a] / deg);
+    }
+    for (size_t i = 0; i < verts.size(); ++i)
+      if (adj.offset[verts[i] + 1] > adj.offset[verts[i]])
+        for (int a = 0; a < 3; ++a) m.positions[3 * size_t{verts[i]} + a] = to[3 * i + a];
+    moved += verts.size();
+  }
+  return moved;
+}
+
+size_t undo_self_intersections(TriangleMesh& m, const std::vector<float>& safe, int rounds) {
+  size_t reverted = 0;
+  for (int round = 0; round <= rounds; ++round) {
+    const auto crossing = self_intersections(m);
+    if (crossing.empty()) return reverted;
+    if (round == rounds) {
+      // Still crossing after every local undo: all the way back.
+      for (size_t i = 0; i < m.positions.size(); i += 3)
+        reverted += m.positions[i] != safe[i] || m.positions[i + 1] != safe[i + 1] || m.positions[i + 2] != safe[i + 2];
+      m.positions = safe;
+      return reverted;
+    }
+    // The first rounds take the crossing triangles' vertices half way back,
+    // which often suffices and keeps most of the moves; later rounds all
+    // the way.
+    std::vector<uint32_t> verts;
+    for (const auto& [f, g] : crossing)
+      for (uint32_t tri : {f, g})
+        for (int k = 0; k < 3; ++k) verts.push_back(m.triangles[3 * size_t{tri} + k]);
+    std::sort(verts.begin(), verts.end());
+    verts.erase(std::unique(verts.begin(), verts.end()), verts.end());
+    const bool halfway = round < rounds / 2;
+    for (uint32_t v : verts) {
+      float* p = &m.positions[3 * size_t{v}];
+      const float* b = &safe[3 * size_t{v}];
+      if (p[0] == b[0] && p[1] == b[1] && p[2] == b[2]) continue;
+      ++reverted;
+      for (int a = 0; a < 3; ++a) p[a] = halfway ? 0.5f * (p[a] + b[a]) : b[a];
+    }
+  }
+  return reverted;
+}
 
 bool inside_mesh(const TriangleMesh& m, const std::array<double, 3>& p) {
   // Sum of signed solid angles (Van Oosterom-Strackee): 4π inside, 0 outside.

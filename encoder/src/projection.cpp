@@ -1,8 +1,34 @@
 #include "dbss/encoder/projection.h"
 
+#include <Eigen/Dense>
+
 #include "dbss/encoder/mesh_ops.h"
 
 namespace dbss {
+
+namespace {
+// The foot of p on the least-squares plane of its nearest points: a move
+// along the surface normal only, for vertices whose jump onto a point would
+// turn a triangle over (a jump has a tangential part the size of the point
+// spacing, a lot next to a short edge).
+bool foot_on_plane(const PointCloud& pc, const uint32_t* near, size_t found, const float p[3], float out[3]) {
+  if (found < 3) return false;
+  Eigen::Vector3d c = Eigen::Vector3d::Zero();
+  for (size_t i = 0; i < found; ++i) c += Eigen::Vector3d(pc.xyz[3 * near[i]], pc.xyz[3 * near[i] + 1], pc.xyz[3 * near[i] + 2]);
+  c /= static_cast<double>(found);
+  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+  for (size_t i = 0; i < found; ++i) {
+    const Eigen::Vector3d d = Eigen::Vector3d(pc.xyz[3 * near[i]], pc.xyz[3 * near[i] + 1], pc.xyz[3 * near[i] + 2]) - c;
+    cov += d * d.transpose();
+  }
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
+  const Eigen::Vector3d n = eig.eigenvectors().col(0);
+  const Eigen::Vector3d x(p[0], p[1], p[2]);
+  const Eigen::Vector3d f = x - (x - c).dot(n) * n;
+  for (int a = 0; a < 3; ++a) out[a] = static_cast<float>(f[a]);
+  return true;
+}
+}  // namespace
 
 size_t project_to_points(TriangleMesh& m, const PointIndex& index) {
   const PointCloud& pc = index.points();
@@ -27,7 +53,20 @@ size_t project_to_points(TriangleMesh& m, const PointIndex& index) {
       if (!moved)
         for (int a = 0; a < 3; ++a) p[a] = old[a];
     }
-    // Failing that, part of the way to the closest point.
+    // Failing that, onto the points' local plane.
+    float foot[3];
+    if (!moved && foot_on_plane(pc, near, std::min<size_t>(found, 8), old, foot) &&
+        move_keeps_orientation(m, vt, static_cast<uint32_t>(v), foot)) {
+      for (int a = 0; a < 3; ++a) p[a] = foot[a];
+      if (!folded_before && folded_around(m, vt, static_cast<uint32_t>(v))) {
+        for (int a = 0; a < 3; ++a) p[a] = old[a];
+      } else {
+        ++partly;
+        kept += 1;
+        continue;
+      }
+    }
+    // Failing that too, part of the way to the closest point.
     for (float t = 0.5f; found > 0 && !moved && t > 0.05f; t *= 0.5f) {
       float to[3];
       for (int a = 0; a < 3; ++a) to[a] = old[a] + t * (pc.xyz[3 * near[0] + a] - old[a]);

@@ -222,7 +222,7 @@ class Simplifier {
 
 uint32_t default_control_faces(uint32_t shell_faces, int64_t genus) {
   const int64_t lo = 96 + 64 * std::max<int64_t>(0, genus);
-  const int64_t f = std::clamp<int64_t>(shell_faces / 8, lo, std::max<int64_t>(lo, 4000));
+  const int64_t f = std::clamp<int64_t>(shell_faces / 24, lo, std::max<int64_t>(lo, 4000));
   return static_cast<uint32_t>(f & ~int64_t{1});
 }
 

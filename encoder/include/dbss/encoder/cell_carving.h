@@ -40,8 +40,17 @@ struct CarvingStats {
 // redone so no enclosed air remains.  grid in 2..1024.
 CellGrid carve(const PointCloud& points, int grid, CarvingStats* stats = nullptr);
 
-// The finest grid whose carving stays outside the surface, from the points'
-// spacing (see the comment in cell_carving.cpp), between 8 and max_grid.
+// What a carving says about the solid, to tell a closed carving from a leak.
+struct CarvingShape {
+  int64_t euler = 0;         // Euler characteristic of the solid cells' union: components - handles + cavities
+  double inside_volume = 0;  // model units^3 of solid cells without points (the enclosed inside)
+};
+CarvingShape carving_shape(const CellGrid& g);
+
+// The finest grid whose carving does not leak into the inside: grids are
+// stepped finer from cells of two point spacings until the enclosed volume
+// collapses, the solid's topology tears or it needs patching (see
+// cell_carving.cpp); between 8 and max_grid.
 int choose_grid(const PointCloud& points, int max_grid = 256);
 
 }  // namespace dbss

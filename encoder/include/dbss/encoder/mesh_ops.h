@@ -61,6 +61,17 @@ SurfaceDistance vertices_to_points_surface(const std::vector<float>& vertices_xy
 std::vector<std::pair<uint32_t, uint32_t>> self_intersections(const TriangleMesh& m);
 size_t count_self_intersections(const TriangleMesh& m);
 
+// Where triangles cross, puts their vertices back at their positions in
+// `safe` (the same mesh before some moves, without crossings), up to
+// `rounds` times, then every vertex.  Returns how many vertex moves were
+// undone.
+size_t undo_self_intersections(TriangleMesh& m, const std::vector<float>& safe, int rounds = 8);
+
+// Where triangles cross and no earlier state is at hand (after edge
+// collapses), moves their vertices to their neighbours' mean, up to `rounds`
+// times.  Returns the number of vertex moves.
+size_t relax_self_intersections(TriangleMesh& m, int rounds = 10);
+
 // Winding-number inside test of a closed, outward-oriented mesh.
 bool inside_mesh(const TriangleMesh& m, const std::array<double, 3>& p);
 

@@ -23,6 +23,7 @@ struct ShrinkWrapStats {
   double mean_distance = 0;  // mean vertex-to-closest-point distance at the end
   double max_distance = 0;
   size_t untangled = 0;  // folded edges smoothed out after the last iteration
+  size_t undone = 0;     // vertex moves undone because they made triangles cross
 };
 
 // Moves mesh vertices in place; connectivity is unchanged.

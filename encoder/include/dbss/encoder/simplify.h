@@ -21,7 +21,7 @@ struct SimplifyStats {
 // even target is met exactly unless every remaining collapse is refused.
 Result<TriangleMesh> simplify_mesh(const TriangleMesh& mesh, uint32_t target_faces, SimplifyStats* stats = nullptr);
 
-// The default control mesh size for a shell: an eighth of its triangles,
+// The default control mesh size for a shell: a 24th of its triangles,
 // at least 96 + 64 * genus (enough room around every handle) and at most
 // 4000, rounded to even.
 uint32_t default_control_faces(uint32_t shell_faces, int64_t genus);
