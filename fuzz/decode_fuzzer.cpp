@@ -2,7 +2,8 @@
 //
 // The first input byte sets the policy: bit 0 turns checksum verification
 // off (so mutated files reach the field and mesh checks behind the CRC);
-// the rest is the file, fed in pieces whose size comes from the second byte.
+// the rest is the file, fed whole when the second byte is 0, else in pieces
+// of random sizes (1..256 bytes) from a generator the second byte seeds.
 // Oracles (always on): levels never exceed what the header declares, every
 // decoded level has the counts the header implies, and decoding a level
 // twice gives the same bits.
@@ -29,11 +30,18 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   o.limits.max_vertices = 1 << 18;  // bounded work per input
   o.limits.verify_checksums = !(data[0] & 1);
   o.threads = 1;
-  const size_t piece = 1 + data[1] % 97;
   const std::span<const uint8_t> file(data + 2, size - 2);
   dbss::ProgressiveDecoder d(o);
-  for (size_t at = 0; at < file.size(); at += piece) {
-    if (!d.feed(file.subspan(at, std::min(piece, file.size() - at))).ok()) break;
+  uint32_t state = 0x9E3779B9u ^ data[1];
+  for (size_t at = 0; at < file.size();) {
+    size_t piece = file.size();
+    if (data[1] != 0) {
+      state ^= state << 13, state ^= state >> 17, state ^= state << 5;  // xorshift32
+      piece = 1 + state % 256;
+    }
+    piece = std::min(piece, file.size() - at);
+    if (!d.feed(file.subspan(at, piece)).ok()) break;
+    at += piece;
   }
   d.finish();
   const int ready = d.ready_level();

@@ -247,7 +247,7 @@ Result<PointCloud> parse_stl(const std::string& name, std::string_view bytes) {
 
 Result<PointCloud> parse_ply(const std::string& name, std::string_view bytes);  // ply_reader.cpp
 
-Result<PointCloud> parse_points(const std::string& name, const std::string& bytes) {
+Result<PointCloud> parse_points(const std::string& name, std::string_view bytes) {
   const std::string ext = lower_extension(name);
   Result<PointCloud> r = Status(ErrorCode::invalid_argument, "");
   if (ext == "xyz" || ext == "pts" || ext == "txt") {
@@ -268,9 +268,18 @@ Result<PointCloud> parse_points(const std::string& name, const std::string& byte
 }
 
 Result<PointCloud> read_points(const std::string& path) {
-  auto bytes = format::read_file(path, uint64_t{1} << 34);
+  // The format first: a device or a file of another kind is refused before
+  // anything is read.
+  const std::string ext = lower_extension(path);
+  if (ext != "xyz" && ext != "pts" && ext != "txt" && ext != "obj" && ext != "off" && ext != "stl" && ext != "ply")
+    return bad(path, ext.empty() ? "no file extension to tell the format (expected .ply, .obj, .off, .xyz or .stl)"
+                                 : "unknown input format '." + ext + "' (expected .ply, .obj, .off, .xyz or .stl)");
+  // 4 GiB: over 100 million points in any of the formats, far beyond what
+  // reconstruction handles on one machine.
+  auto bytes = format::read_file(path, uint64_t{1} << 32);
   if (!bytes.ok()) return bytes.status();
-  return parse_points(path, std::string(bytes.value().begin(), bytes.value().end()));
+  const std::vector<uint8_t>& b = bytes.value();
+  return parse_points(path, std::string_view(reinterpret_cast<const char*>(b.data()), b.size()));
 }
 
 Status check_reconstructible(const PointCloud& c, const std::string& name) {

@@ -74,6 +74,16 @@ Result<std::vector<uint8_t>> read_file(const std::string& path, uint64_t max_siz
     ::close(fd);
     return Status(ErrorCode::io, path + ": is a directory, not a file");
   }
+  // Devices and sockets never end (/dev/zero) or block (a terminal); pipes
+  // are read up to max_size like files.
+  if (S_ISCHR(st.st_mode) || S_ISBLK(st.st_mode) || S_ISSOCK(st.st_mode)) {
+    ::close(fd);
+    return Status(ErrorCode::io, path + ": not a regular file (a device or socket)");
+  }
+  if (S_ISREG(st.st_mode) && static_cast<uint64_t>(st.st_size) > max_size) {
+    ::close(fd);
+    return Status(ErrorCode::limit_exceeded, path + ": file is over " + std::to_string(max_size) + " bytes");
+  }
   std::vector<uint8_t> data;
   uint8_t buf[1 << 16];
   for (;;) {

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "dbss/format/status.h"
@@ -27,7 +28,7 @@ Result<PointCloud> read_points(const std::string& path);
 
 // Same, from bytes already in memory; `name` is used in messages and its
 // extension picks the format.
-Result<PointCloud> parse_points(const std::string& name, const std::string& bytes);
+Result<PointCloud> parse_points(const std::string& name, std::string_view bytes);
 
 // Checks a cloud is usable for reconstruction: at least 4 points not all on
 // one plane.  The message names `name`.
