@@ -120,9 +120,12 @@ TEST_CASE("bad input files give clear errors naming the file and the place") {
   CHECK(err("cut.ply", cut).find("byte") != std::string::npos);
   CHECK(err("x.unknown", "1 2 3\n").find("unknown input format") != std::string::npos);
   // A directory and a missing file: io errors naming the path.
-  auto d = read_points(dir().string());
+  std::filesystem::create_directories(dir() / "folder.xyz");
+  auto d = read_points((dir() / "folder.xyz").string());
   CHECK(d.status().code() == ErrorCode::io);
-  CHECK(d.status().message().find(dir().string()) != std::string::npos);
+  CHECK(d.status().message().find("folder.xyz: is a directory") != std::string::npos);
+  // A path without an extension is refused before anything is read.
+  CHECK(read_points(dir().string()).status().message().find("no file extension") != std::string::npos);
   CHECK(read_points((dir() / "missing.ply").string()).status().code() == ErrorCode::io);
 }
 
