@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <new>
 
+#include "dbss/decoder/progressive.h"
 #include "dbss/format/crc32c.h"
 #include "samples.h"
 
@@ -141,4 +142,52 @@ TEST_CASE("a chunk declaring 3 GiB allocates only for the bytes that arrive") {
   CHECK(probe.largest() < 64 * 1024);
   // With the default ancillary limit the entry alone is refused.
   CHECK(read_all(file).status().code() == ErrorCode::limit_exceeded);
+}
+
+TEST_CASE("the progressive decoder refuses a small file declaring 2^40 vertices or 30 levels, allocating little") {
+  // A client decoder, default options: the header's declarations are checked
+  // against the limits before any mesh memory exists.
+  auto file = test::small_file();
+  REQUIRE(file.size() < 2048);
+  auto refused = [](const std::vector<uint8_t>& f) {
+    Probe probe;
+    ProgressiveDecoder d;
+    const Status fed = d.feed(f);
+    INFO(fed.to_string());
+    CHECK(fed.code() == ErrorCode::limit_exceeded);
+    CHECK(fed.offset() <= kHeadData + 56);
+    CHECK(d.ready_level() == -1);
+    CHECK(!d.decode(0).ok());
+    CHECK(probe.largest() < 64 * 1024);
+  };
+  // 30 levels of a small control mesh (the format allows 30; the default
+  // limit is 10).
+  auto levels30 = file;
+  levels30[kHeadData + 8] = 30;
+  fix_crc(levels30, kHeadAt);
+  refused(levels30);
+  // A sphere-like control mesh of 2^20 + 2 vertices: level 10 would hold
+  // about 2^40 vertices.
+  auto huge = file;
+  put_u32(huge, kHeadData + 12, (1u << 20) + 2);
+  put_u32(huge, kHeadData + 16, 3u << 20);
+  put_u32(huge, kHeadData + 20, 2u << 20);
+  huge[kHeadData + 8] = 10;
+  fix_crc(huge, kHeadAt);
+  refused(huge);
+  // Even with the level limit raised to the format's 30, the vertex limit
+  // holds (20 levels: about 2^45 vertices, under the 2^62 overflow).
+  auto levels20 = file;
+  levels20[kHeadData + 8] = 20;
+  fix_crc(levels20, kHeadAt);
+  Limits l;
+  l.max_levels = 30;
+  Probe probe;
+  DecoderOptions o;
+  o.limits = l;
+  ProgressiveDecoder d(o);
+  const Status s = d.feed(levels20);
+  INFO(s.to_string());
+  CHECK(s.code() == ErrorCode::limit_exceeded);
+  CHECK(probe.largest() < 64 * 1024);
 }
