@@ -91,3 +91,15 @@ expect_run(1 "--levels needs a whole number" ${DBSS} compare ${example} --levels
 expect_run(1 "missing.xyz: cannot open" ${DBSS} compare ${WORK}/missing.xyz)
 expect_run(0 "DSS all B" ${DBSS} compare ${example} --levels 2)
 expect_run(0 "\"dss_all_bytes\": [0-9]+, \"dbss_clamped\"" ${DBSS} compare ${example} --levels 1 --json --no-errors)
+
+# A failed encode leaves an existing output as it was.
+file(WRITE ${WORK}/keep.dbss "the old output")
+expect_run(1 "bad.xyz: line 2" ${DBSS} encode ${WORK}/bad.xyz -o ${WORK}/keep.dbss)
+file(READ ${WORK}/keep.dbss kept)
+if(NOT kept STREQUAL "the old output")
+  message(FATAL_ERROR "a failed encode changed the existing output")
+endif()
+# --effort and --control-bits change the bytes, and the files still decode.
+expect_run(0 "-> " ${DBSS} encode ${example} -o ${WORK}/e1.dbss --levels 1 --effort 1 --control-bits 12)
+expect_run(0 "complete, every chunk verified" ${DBSS} info ${WORK}/e1.dbss)
+expect_run(0 "level 1" ${DBSS} decode ${WORK}/e1.dbss -o ${WORK}/e1.ply)

@@ -1,5 +1,9 @@
 #include <catch2/catch.hpp>
 
+#include <sys/resource.h>
+
+#include <csignal>
+
 #include <filesystem>
 
 #include "samples.h"
@@ -42,6 +46,30 @@ TEST_CASE("write_file_atomic failures name the path and keep the old file") {
   const Status t = write_file_atomic((d / "dir.dbss").string(), test::small_file());
   CHECK(t.code() == ErrorCode::io);
   CHECK(fs::is_directory(d / "dir.dbss"));
+  CHECK(entries(d) == 1);
+  fs::remove_all(d);
+}
+
+TEST_CASE("a write cut off midway leaves the old file whole and no temporary behind") {
+  // The process's file-size limit makes write() fail partway (EFBIG), as a
+  // full disk would.
+  const fs::path d = scratch("cut");
+  const std::string path = (d / "x.dbss").string();
+  const std::vector<uint8_t> old(100, 0x42);
+  REQUIRE(write_file_atomic(path, old).ok());
+  const std::vector<uint8_t> big(64 * 1024, 0x17);
+  struct rlimit saved{};
+  REQUIRE(getrlimit(RLIMIT_FSIZE, &saved) == 0);
+  const auto old_handler = std::signal(SIGXFSZ, SIG_IGN);
+  struct rlimit small = saved;
+  small.rlim_cur = 4096;
+  REQUIRE(setrlimit(RLIMIT_FSIZE, &small) == 0);
+  const Status s = write_file_atomic(path, big);
+  setrlimit(RLIMIT_FSIZE, &saved);
+  std::signal(SIGXFSZ, old_handler);
+  CHECK(s.code() == ErrorCode::io);
+  CHECK(s.message().find(path) != std::string::npos);
+  CHECK(read_file(path).value() == old);
   CHECK(entries(d) == 1);
   fs::remove_all(d);
 }
