@@ -138,6 +138,12 @@ Result<TriangleMesh> triangulate_shell(const CellGrid& g, bool collapse_types) {
   if (!info.manifold || !info.closed)
     return Status(ErrorCode::internal, "shell triangulation is not a closed manifold: " +
                                            (info.manifold ? std::string("it has a boundary") : info.status.message()));
+  // The boundary of a solid has twice the solid's Euler characteristic; the
+  // collapses and diagonals must not change the topology the cells have.
+  const int64_t solid = carving_shape(g).euler;
+  if (info.euler != 2 * solid)
+    return Status(ErrorCode::internal, "shell triangulation has Euler characteristic " + std::to_string(info.euler) +
+                                           ", the carved solid's boundary " + std::to_string(2 * solid));
   return m;
 }
 

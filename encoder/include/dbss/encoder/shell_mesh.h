@@ -12,10 +12,12 @@ namespace dbss {
 // corners.  The paper's collapse types then simplify cells with many air
 // faces: five air faces (Type 1) collapse the four air corners into one;
 // four air faces not forming a ribbon (Type 2) collapse the two air corners;
-// three air faces around one corner (Type 3) cut that corner off.  A
-// collapse is skipped where it would break the manifold.  Because carve()
-// leaves a well-composed solid, the result is a closed, oriented 2-manifold;
-// it is checked, and a failed check is an internal error.
+// three air faces around one corner (Type 3) cut that corner off; every
+// other cell (Type 4, the general case) keeps its air quads, each split into
+// two triangles.  Collapses only merge corners that no other solid cell
+// uses.  Because carve() leaves a well-composed solid, the result is a
+// closed, oriented 2-manifold whose Euler characteristic is twice the
+// solid's; both are checked, and a failed check is an internal error.
 Result<TriangleMesh> triangulate_shell(const CellGrid& grid, bool collapse_types = true);
 
 // Topological facts about a mesh, from the decoder's own topology builder.
