@@ -54,7 +54,11 @@ Result<EncodedLevels> encode_levels(const TriangleMesh& control, const PointInde
       st.by_nearest += s.source == SampleSource::nearest;
       sum_abs += std::abs(s.distance);
       const double q = std::nearbyint(s.distance / step);
-      level.q[e] = static_cast<int32_t>(std::clamp(q, double(-format::kMaxAbsDisplacement), double(format::kMaxAbsDisplacement)));
+      const double limit = format::kMaxAbsDisplacement;
+      // The format's range caps q too (only with steps far below the
+      // geometry's scale); counted with the sampler's clamps.
+      st.clamped += !s.clamped && std::abs(q) > limit;
+      level.q[e] = static_cast<int32_t>(std::clamp(q, -limit, limit));
     }
     st.mean_abs_displacement = plan.odd_count() ? sum_abs / plan.odd_count() : 0;
 
