@@ -85,7 +85,7 @@ TEST_CASE("Table 1 counts: genus 1 with 50 vertices and genus 0 with 107") {
       CHECK(t.edge_count() == odd[l]);
       t = refine_topology(t);
       CHECK(t.vertex_count == total[l]);
-      CHECK(t.triangle_count() == 4 * (t.triangle_count() / 4));
+      CHECK(t.triangle_count() == m.triangle_count() << (2 * (l + 1)));
       // The format's count recurrence agrees with the refined topology.
       const auto counts = format::counts_at_level({m.vertex_count(), topology_of(m).edge_count(), m.triangle_count()}, l + 1);
       CHECK(counts->vertices == t.vertex_count);
@@ -274,5 +274,28 @@ TEST_CASE("the regular fast path gives the same bits as the generic weighted lis
     subdivide_geometry(fast, pos, {}, 0, a);
     subdivide_geometry(slow, pos, {}, 0, b);
     CHECK(a == b);
+  }
+}
+
+TEST_CASE("all-zero displacements give exactly plain butterfly subdivision") {
+  for (const dbss::TriangleMesh& m : {dbss::test::jitter(dbss::test::torus(9, 7), 0.05f),
+                                      dbss::test::jitter(dbss::test::bipyramid(11), 0.1f),
+                                      dbss::test::jitter(dbss::test::planar_grid(6, 5), 0.1f)}) {
+    auto t = dbss::build_topology(static_cast<uint32_t>(m.vertex_count()), m.triangles);
+    REQUIRE(t.ok());
+    std::vector<float> plain = m.positions, zero = m.positions;
+    dbss::LevelTopology topo = t.value();
+    for (int level = 1; level <= 3; ++level) {
+      const dbss::LevelPlan plan = dbss::plan_level(topo);
+      std::vector<float> a, b;
+      dbss::subdivide_geometry(plan, plain, {}, 0.0f, a);
+      const std::vector<int32_t> q(plan.odd_count(), 0);
+      dbss::subdivide_geometry(plan, zero, q, 0.37f, b);
+      REQUIRE(a.size() == b.size());
+      // Equal values (a zero displacement may turn -0 into +0, nothing else).
+      for (size_t i = 0; i < a.size(); ++i) REQUIRE(a[i] == b[i]);
+      plain = std::move(a), zero = std::move(b);
+      topo = dbss::refine_topology(topo);
+    }
   }
 }
