@@ -1,11 +1,15 @@
 #include <catch2/catch.hpp>
 
+#include <draco/compression/encode.h>
+#include <draco/mesh/triangle_soup_mesh_builder.h>
+
 #include <algorithm>
 #include <array>
 #include <set>
 
 #include "../shapes.h"
 #include "dbss/decoder/control_mesh.h"
+#include "dbss/decoder/topology.h"
 #include "dbss/encoder/control_mesh_codec.h"
 
 using dbss::TriangleMesh;
@@ -96,4 +100,39 @@ TEST_CASE("encode_control_mesh rejects malformed meshes") {
   CHECK(!dbss::encode_control_mesh(empty).ok());
   CHECK(dbss::encode_control_mesh(dbss::test::torus(4, 3), {40, 0}).status().code() ==
         dbss::ErrorCode::invalid_argument);
+}
+
+TEST_CASE("Draco's points split by a second attribute merge back into one vertex per position") {
+  // Per-face normals make Draco keep several points at each corner
+  // position; the decoder must give one vertex per position value, or the
+  // mesh would fall apart into separate triangles.
+  const dbss::TriangleMesh m = dbss::test::bipyramid(5);
+  draco::TriangleSoupMeshBuilder builder;
+  builder.Start(static_cast<int>(m.triangle_count()));
+  const int pos = builder.AddAttribute(draco::GeometryAttribute::POSITION, 3, draco::DT_FLOAT32);
+  const int nrm = builder.AddAttribute(draco::GeometryAttribute::NORMAL, 3, draco::DT_FLOAT32);
+  for (size_t f = 0; f < m.triangle_count(); ++f) {
+    const float* p[3];
+    for (int k = 0; k < 3; ++k) p[k] = &m.positions[3 * size_t{m.triangles[3 * f + k]}];
+    const float u[3] = {p[1][0] - p[0][0], p[1][1] - p[0][1], p[1][2] - p[0][2]};
+    const float w[3] = {p[2][0] - p[0][0], p[2][1] - p[0][1], p[2][2] - p[0][2]};
+    const float n[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
+    const draco::FaceIndex fi(static_cast<uint32_t>(f));
+    builder.SetAttributeValuesForFace(pos, fi, p[0], p[1], p[2]);
+    builder.SetAttributeValuesForFace(nrm, fi, n, n, n);
+  }
+  auto mesh = builder.Finalize();
+  REQUIRE(mesh);
+  REQUIRE(mesh->num_points() > m.vertex_count());  // the split really happened
+  draco::Encoder enc;
+  enc.SetAttributeQuantization(draco::GeometryAttribute::POSITION, 16);
+  enc.SetAttributeQuantization(draco::GeometryAttribute::NORMAL, 8);
+  draco::EncoderBuffer out;
+  REQUIRE(enc.EncodeMeshToBuffer(*mesh, &out).ok());
+  auto back = dbss::decode_control_mesh({reinterpret_cast<const uint8_t*>(out.data()), out.size()}, 1 << 20, 1 << 20);
+  INFO(back.status().to_string());
+  REQUIRE(back.ok());
+  CHECK(back.value().vertex_count() == m.vertex_count());
+  CHECK(back.value().triangle_count() == m.triangle_count());
+  CHECK(dbss::build_topology(static_cast<uint32_t>(back.value().vertex_count()), back.value().triangles).ok());
 }
