@@ -12,14 +12,14 @@ jobs=$(nproc 2>/dev/null || echo 2)
 echo "== gcc, Release =="
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_COMPILER=g++ -DDBSS_WERROR=ON
 cmake --build build -j "$jobs"
-ctest --test-dir build --output-on-failure -j "$jobs"
+ctest --test-dir build --output-on-failure -j "$jobs" | tee build/ctest.log
 
 echo "== clang, ASan + UBSan =="
 cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ \
   -DDBSS_SANITIZE=address,undefined -DDBSS_BUILD_BENCH=OFF -DDBSS_WERROR=ON
 cmake --build build-asan -j "$jobs"
 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
-  ctest --test-dir build-asan --output-on-failure -j "$jobs"
+  ctest --test-dir build-asan --output-on-failure -j "$jobs" | tee build-asan/ctest.log
 
 # The decoder's output is part of the format: the golden-file test must give
 # the same bits with optimisation off (gcc -O0) and with clang -O3 too.
@@ -35,3 +35,13 @@ done
 # Fuzzing: each libFuzzer target for about a minute (scripts/fuzz.sh).
 echo "== fuzz =="
 bash scripts/fuzz.sh
+
+# One closing line for both suites (set -e and pipefail stopped us on any
+# failure before here).
+passed=0
+for log in build/ctest.log build-asan/ctest.log; do
+  n=$(sed -n 's/^100% tests passed, 0 tests failed out of \([0-9]*\)$/\1/p' "$log")
+  passed=$((passed + ${n:-0}))
+done
+echo "test.sh: gcc and clang+sanitizer suites, golden files at -O0 and clang -O3, fuzzing: all clean"
+echo "${passed} passed, 0 failed"
