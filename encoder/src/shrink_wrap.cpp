@@ -22,7 +22,7 @@ ShrinkWrapStats shrink_wrap(TriangleMesh& m, const PointIndex& index, const Shri
 
   ShrinkWrapStats stats;
   const Adjacency vt = vertex_triangles(m);
-  // Every third iteration, and the last, undoes the moves that made
+  // Every fourth iteration, and the last, undoes the moves that made
   // triangles cross since the last check, starting from the carved shell
   // (which has none), so the wrapped mesh has none either: the orientation
   // check per vertex cannot see two sheets of a thin part meeting.  (Every
@@ -66,7 +66,7 @@ ShrinkWrapStats shrink_wrap(TriangleMesh& m, const PointIndex& index, const Shri
     }
     stats.iterations = it + 1;
     const bool converged = moved / std::max<size_t>(1, n) < o.tolerance * mean_edge;
-    if (converged || it % 3 == 2 || it + 1 == o.max_iterations) {
+    if (converged || it % 4 == 3 || it + 1 == o.max_iterations) {
       stats.undone += undo_self_intersections(m, safe);
       safe = m.positions;
     }
