@@ -16,26 +16,15 @@
 #include <draco/compression/decode.h>
 
 #include "dbss/decoder/progressive.h"
+#include "timing.h"
 #include "dbss/encoder/compare.h"
 #include "dbss/encoder/control_mesh_codec.h"
 #include "dbss/encoder/point_input.h"
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
 
-template <class F>
-double best_seconds(F&& f, double budget = 0.3) {
-  double best = 1e30, spent = 0;
-  for (int i = 0; i < 20 && (i < 3 || spent < budget); ++i) {
-    const auto t0 = Clock::now();
-    f();
-    const double s = std::chrono::duration<double>(Clock::now() - t0).count();
-    best = std::min(best, s);
-    spent += s;
-  }
-  return best;
-}
+using dbss::bench::best_seconds;
 
 struct Result {
   std::string name;

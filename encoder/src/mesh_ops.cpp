@@ -218,6 +218,26 @@ SurfaceDistance points_to_mesh(const std::vector<float>& xyz, const TriangleMesh
   return out;
 }
 
+PointPlane fit_plane(const PointCloud& pc, const uint32_t* indices, size_t count) {
+  PointPlane out;
+  if (count == 0) return out;
+  Eigen::Vector3d c = Eigen::Vector3d::Zero();
+  for (size_t j = 0; j < count; ++j) c += Eigen::Vector3d(pc.xyz[3 * indices[j]], pc.xyz[3 * indices[j] + 1], pc.xyz[3 * indices[j] + 2]);
+  c /= static_cast<double>(count);
+  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+  for (size_t j = 0; j < count; ++j) {
+    const Eigen::Vector3d d = Eigen::Vector3d(pc.xyz[3 * indices[j]], pc.xyz[3 * indices[j] + 1], pc.xyz[3 * indices[j] + 2]) - c;
+    cov += d * d.transpose();
+  }
+  // The direction of least spread: the eigenvector of the smallest
+  // eigenvalue (Eigen sorts them ascending).
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
+  const Eigen::Vector3d n = eig.eigenvectors().col(0);
+  out.point = {c[0], c[1], c[2]};
+  out.normal = {n[0], n[1], n[2]};
+  return out;
+}
+
 SurfaceDistance vertices_to_points_surface(const std::vector<float>& xyz, const PointIndex& index) {
   const PointCloud& pc = index.points();
   SurfaceDistance out;
@@ -226,17 +246,10 @@ SurfaceDistance vertices_to_points_surface(const std::vector<float>& xyz, const 
   float d2[8];
   for (size_t i = 0; i < n; ++i) {
     const size_t k = index.nearest_k(&xyz[3 * i], 8, near, d2);
-    Eigen::Vector3d c = Eigen::Vector3d::Zero();
-    for (size_t j = 0; j < k; ++j) c += Eigen::Vector3d(pc.xyz[3 * near[j]], pc.xyz[3 * near[j] + 1], pc.xyz[3 * near[j] + 2]);
-    c /= static_cast<double>(k);
-    Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
-    for (size_t j = 0; j < k; ++j) {
-      const Eigen::Vector3d d = Eigen::Vector3d(pc.xyz[3 * near[j]], pc.xyz[3 * near[j] + 1], pc.xyz[3 * near[j] + 2]) - c;
-      cov += d * d.transpose();
-    }
-    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
+    const PointPlane plane = fit_plane(pc, near, k);
     const Eigen::Vector3d p(xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]);
-    const double dist = std::abs((p - c).dot(eig.eigenvectors().col(0)));
+    const Eigen::Vector3d c(plane.point[0], plane.point[1], plane.point[2]), nrm(plane.normal[0], plane.normal[1], plane.normal[2]);
+    const double dist = std::abs((p - c).dot(nrm));
     out.mean += dist;
     out.max = std::max(out.max, dist);
   }
@@ -353,18 +366,26 @@ std::vector<std::pair<uint32_t, uint32_t>> self_intersections(const TriangleMesh
 
 size_t count_self_intersections(const TriangleMesh& m) { return self_intersections(m).size(); }
 
+namespace {
+// The distinct corners of the triangles in `pairs`, ascending.
+std::vector<uint32_t> corners_of(const TriangleMesh& m, const std::vector<std::pair<uint32_t, uint32_t>>& pairs) {
+  std::vector<uint32_t> verts;
+  for (const auto& [f, g] : pairs)
+    for (uint32_t tri : {f, g})
+      for (int k = 0; k < 3; ++k) verts.push_back(m.triangles[3 * size_t{tri} + k]);
+  std::sort(verts.begin(), verts.end());
+  verts.erase(std::unique(verts.begin(), verts.end()), verts.end());
+  return verts;
+}
+}  // namespace
+
 size_t relax_self_intersections(TriangleMesh& m, int rounds) {
   size_t moved = 0;
   const Adjacency adj = vertex_adjacency(m);
   for (int round = 0; round < rounds; ++round) {
     const auto crossing = self_intersections(m);
     if (crossing.empty()) break;
-    std::vector<uint32_t> verts;
-    for (const auto& [f, g] : crossing)
-      for (uint32_t tri : {f, g})
-        for (int k = 0; k < 3; ++k) verts.push_back(m.triangles[3 * size_t{tri} + k]);
-    std::sort(verts.begin(), verts.end());
-    verts.erase(std::unique(verts.begin(), verts.end()), verts.end());
+    const std::vector<uint32_t> verts = corners_of(m, crossing);
     // Jacobi: every listed vertex goes to its neighbours' mean as they were.
     std::vector<float> to(3 * verts.size(), 0.0f);
     for (size_t i = 0; i < verts.size(); ++i) {
@@ -399,12 +420,7 @@ size_t undo_self_intersections(TriangleMesh& m, const std::vector<float>& safe, 
     // The first rounds take the crossing triangles' vertices half way back,
     // which often suffices and keeps most of the moves; later rounds all
     // the way.
-    std::vector<uint32_t> verts;
-    for (const auto& [f, g] : crossing)
-      for (uint32_t tri : {f, g})
-        for (int k = 0; k < 3; ++k) verts.push_back(m.triangles[3 * size_t{tri} + k]);
-    std::sort(verts.begin(), verts.end());
-    verts.erase(std::unique(verts.begin(), verts.end()), verts.end());
+    const std::vector<uint32_t> verts = corners_of(m, crossing);
     const bool halfway = round < rounds / 2;
     for (uint32_t v : verts) {
       float* p = &m.positions[3 * size_t{v}];

@@ -1,7 +1,5 @@
 #include "dbss/encoder/projection.h"
 
-#include <Eigen/Dense>
-
 #include "dbss/encoder/mesh_ops.h"
 
 namespace dbss {
@@ -13,19 +11,10 @@ namespace {
 // spacing, a lot next to a short edge).
 bool foot_on_plane(const PointCloud& pc, const uint32_t* near, size_t found, const float p[3], float out[3]) {
   if (found < 3) return false;
-  Eigen::Vector3d c = Eigen::Vector3d::Zero();
-  for (size_t i = 0; i < found; ++i) c += Eigen::Vector3d(pc.xyz[3 * near[i]], pc.xyz[3 * near[i] + 1], pc.xyz[3 * near[i] + 2]);
-  c /= static_cast<double>(found);
-  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
-  for (size_t i = 0; i < found; ++i) {
-    const Eigen::Vector3d d = Eigen::Vector3d(pc.xyz[3 * near[i]], pc.xyz[3 * near[i] + 1], pc.xyz[3 * near[i] + 2]) - c;
-    cov += d * d.transpose();
-  }
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
-  const Eigen::Vector3d n = eig.eigenvectors().col(0);
-  const Eigen::Vector3d x(p[0], p[1], p[2]);
-  const Eigen::Vector3d f = x - (x - c).dot(n) * n;
-  for (int a = 0; a < 3; ++a) out[a] = static_cast<float>(f[a]);
+  const PointPlane plane = fit_plane(pc, near, found);
+  double off = 0;
+  for (int a = 0; a < 3; ++a) off += (p[a] - plane.point[a]) * plane.normal[a];
+  for (int a = 0; a < 3; ++a) out[a] = static_cast<float>(p[a] - off * plane.normal[a]);
   return true;
 }
 }  // namespace

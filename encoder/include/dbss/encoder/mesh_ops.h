@@ -52,6 +52,13 @@ struct SurfaceDistance {
 };
 SurfaceDistance points_to_mesh(const std::vector<float>& points_xyz, const TriangleMesh& mesh);
 
+// The least-squares plane of points `indices[0..count)`: their centroid and
+// the unit normal of least spread (sign arbitrary; zero for count 0).
+struct PointPlane {
+  std::array<double, 3> point{}, normal{};
+};
+PointPlane fit_plane(const PointCloud& points, const uint32_t* indices, size_t count);
+
 // Mean and largest distance from each vertex to the surface of the points,
 // taken as the least-squares plane of its 8 nearest points.
 SurfaceDistance vertices_to_points_surface(const std::vector<float>& vertices_xyz, const PointIndex& points);
