@@ -1,0 +1,34 @@
+// Splitting a loop over [0, n) into contiguous ranges, one per thread.
+#pragma once
+
+#include <algorithm>
+#include <cstdint>
+#include <thread>
+#include <vector>
+
+namespace dbss::detail {
+
+// Ranges smaller than this are not worth a thread's start-up (~20 µs).
+inline constexpr uint32_t kMinPerThread = 32768;
+
+// Runs fn(begin, end) over [0, n) in at most `threads` contiguous pieces of
+// at least `min_piece` elements.  Callers write each output element from
+// exactly one piece, so the split cannot change any value.
+template <class F>
+void parallel_ranges(uint32_t n, unsigned threads, F&& fn, uint32_t min_piece = kMinPerThread) {
+  threads = std::max(1u, std::min<unsigned>(threads, n / std::max(1u, min_piece)));
+  if (threads <= 1) {
+    fn(0u, n);
+    return;
+  }
+  std::vector<std::thread> pool;
+  const uint32_t chunk = (n + threads - 1) / threads;
+  for (unsigned i = 1; i < threads; ++i) {
+    const uint32_t b = std::min(n, i * chunk), e = std::min(n, b + chunk);
+    pool.emplace_back([&fn, b, e] { fn(b, e); });
+  }
+  fn(0u, std::min(n, chunk));
+  for (auto& t : pool) t.join();
+}
+
+}  // namespace dbss::detail

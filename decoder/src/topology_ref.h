@@ -1,0 +1,59 @@
+// Internal: a level's connectivity as raw arrays, so the same kernels serve
+// the public LevelTopology (std::vector) and the progressive decoder's
+// reusable, never-zeroed buffers.
+#pragma once
+
+#include <cstdint>
+
+#include "dbss/decoder/topology.h"
+
+namespace dbss::detail {
+
+struct TopologyRef {
+  uint32_t vertex_count = 0, face_count = 0, edge_count = 0;
+  const uint32_t* tri = nullptr;           // 3 per face
+  const uint32_t* twin = nullptr;          // 3 per face
+  const uint32_t* edge_of = nullptr;       // 3 per face
+  const uint32_t* vertex_start = nullptr;  // per vertex
+  const uint16_t* valence = nullptr;       // per vertex
+  const uint8_t* boundary = nullptr;       // per vertex
+};
+
+inline TopologyRef ref_of(const LevelTopology& t) {
+  return {t.vertex_count,         t.triangle_count(),    t.edge_count(),         t.triangles.data(),
+          t.twin.data(),          t.edge_of.data(),      t.vertex_start.data(),  t.vertex_valence.data(),
+          t.vertex_boundary.data()};
+}
+
+// Half-edge h opens an edge (is its first half-edge) when it has no twin or
+// its twin comes later; kNoHalfEdge is larger than any half-edge.
+inline bool opens_edge(const uint32_t* twin, uint32_t h) noexcept { return twin[h] > h; }
+
+// Number of edges opened by half-edges before 3f: where the edges of faces
+// f, f+1, ... start in edge order.  Lets a thread start mid-mesh.
+inline uint32_t first_edge_of_face(const TopologyRef& t, uint32_t f) noexcept {
+  for (uint32_t h = 3 * f; h < 3 * t.face_count; ++h)
+    if (opens_edge(t.twin, h)) return t.edge_of[h];
+  return t.edge_count;
+}
+
+// Where the refinement of a parent level writes the child level's tables.
+struct TopologyOut {
+  uint32_t* tri;
+  uint32_t* twin;
+  uint32_t* edge_of;
+  uint32_t* edge_half;
+  uint32_t* vertex_start;
+  uint16_t* valence;
+  uint8_t* boundary;
+};
+
+// The child tables of parent faces [fb, fe) (their 4 children each, and the
+// odd vertices of the edges they open), and of parent vertices [vb, ve).
+// Each entry is written by exactly one call for disjoint ranges.
+void refine_faces(const TopologyRef& parent, uint32_t fb, uint32_t fe, const TopologyOut& child);
+void refine_vertices(const TopologyRef& parent, uint32_t vb, uint32_t ve, const TopologyOut& child);
+// Only the child triangles of parent faces [fb, fe).
+void refine_triangle_range(const TopologyRef& parent, uint32_t fb, uint32_t fe, uint32_t* child_tri);
+
+}  // namespace dbss::detail
