@@ -1,8 +1,6 @@
 // Child connectivity from the parent's regular 1-to-4 split, without any
 // search: every child entry is a function of a few parent entries, so the
 // work splits over contiguous face ranges (spec/decoding.md section 4).
-#include <bit>
-
 #include "parallel.h"
 #include "topology_ref.h"
 
@@ -49,7 +47,8 @@ inline uint32_t child_edge_base(uint32_t f, uint32_t parent_edges_before) { retu
 inline uint32_t child_edge_in(const TopologyRef& p, uint32_t g_half, uint32_t s) {
   const uint32_t g = g_half / 3, j = g_half % 3;
   const uint32_t open = open_bits(p.twin, g);
-  const uint32_t before = p.edge_of[g_half] - static_cast<uint32_t>(std::popcount(open & ((1u << j) - 1)));
+  constexpr uint8_t kBits[8] = {0, 1, 1, 2, 1, 2, 2, 3};  // popcount of 3 bits (no popcnt on baseline x86-64)
+  const uint32_t before = p.edge_of[g_half] - kBits[open & ((1u << j) - 1)];
   return child_edge_base(g, before) + kRank.r[open][s];
 }
 
@@ -70,7 +69,7 @@ void refine_triangle_range(const TopologyRef& p, uint32_t fb, uint32_t fe, uint3
 }
 
 void refine_faces(const TopologyRef& p, uint32_t fb, uint32_t fe, const TopologyOut& c) {
-  refine_triangle_range(p, fb, fe, c.tri);
+  if (c.tri) refine_triangle_range(p, fb, fe, c.tri);
   uint32_t pe = first_edge_of_face(p, fb);  // parent edges opened before f
   for (uint32_t f = fb; f < fe; ++f) {
     const uint32_t cf = 12 * f;

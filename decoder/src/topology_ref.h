@@ -39,7 +39,7 @@ inline uint32_t first_edge_of_face(const TopologyRef& t, uint32_t f) noexcept {
 
 // Where the refinement of a parent level writes the child level's tables.
 struct TopologyOut {
-  uint32_t* tri;
+  uint32_t* tri;  // may be null when the caller already has the triangles
   uint32_t* twin;
   uint32_t* edge_of;
   uint32_t* edge_half;

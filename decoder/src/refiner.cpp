@@ -1,0 +1,93 @@
+#include "refiner.h"
+
+#include <cstring>
+
+#include "odd_vertices.h"
+#include "parallel.h"
+
+namespace dbss::detail {
+
+TopologyRef Refiner::Topology::ref() const {
+  return {vertex_count,  face_count,          edge_count,     tri.data(),     twin.data(),
+          edge_of.data(), vertex_start.data(), valence.data(), boundary.data()};
+}
+
+void Refiner::reset(const LevelTopology& base, std::span<const float> base_positions) {
+  base_ = &base;
+  level_ = 0;
+  positions_.resize_for_overwrite(base_positions.size());
+  std::memcpy(positions_.data(), base_positions.data(), base_positions.size_bytes());
+  triangles_.resize_for_overwrite(base.triangles.size());
+  std::memcpy(triangles_.data(), base.triangles.data(), base.triangles.size() * sizeof(uint32_t));
+}
+
+TopologyRef Refiner::current_topology(unsigned threads) {
+  if (level_ == 0) return ref_of(*base_);
+  // Level L's triangles are already in triangles_: they move into the
+  // topology instead of being split out of L-1 again.
+  const TopologyRef p = level_ == 1 ? ref_of(*base_) : parent_.ref();
+  Topology& c = spare_;
+  c.vertex_count = p.vertex_count + p.edge_count;
+  c.face_count = 4 * p.face_count;
+  c.edge_count = 2 * p.edge_count + 3 * p.face_count;
+  const size_t halves = 3 * size_t{c.face_count};
+  c.tri.swap(triangles_);
+  c.twin.resize_for_overwrite(halves);
+  c.edge_of.resize_for_overwrite(halves);
+  c.edge_half.resize_for_overwrite(c.edge_count);
+  c.vertex_start.resize_for_overwrite(c.vertex_count);
+  c.valence.resize_for_overwrite(c.vertex_count);
+  c.boundary.resize_for_overwrite(c.vertex_count);
+  const TopologyOut out{nullptr,          c.twin.data(),         c.edge_of.data(), c.edge_half.data(),
+                        c.vertex_start.data(), c.valence.data(), c.boundary.data()};
+  parallel_ranges(p.face_count, threads, [&](uint32_t fb, uint32_t fe) {
+    refine_faces(p, fb, fe, out);
+    // Even vertices: the same share of the parent's vertices.
+    const uint64_t n = p.vertex_count;
+    refine_vertices(p, static_cast<uint32_t>(n * fb / p.face_count), static_cast<uint32_t>(n * fe / p.face_count),
+                    out);
+  });
+  parent_.tri.swap(c.tri);  // parent_ becomes level L; its old buffers are reused next time
+  parent_.twin.swap(c.twin);
+  parent_.edge_of.swap(c.edge_of);
+  parent_.edge_half.swap(c.edge_half);
+  parent_.vertex_start.swap(c.vertex_start);
+  parent_.valence.swap(c.valence);
+  parent_.boundary.swap(c.boundary);
+  parent_.vertex_count = c.vertex_count;
+  parent_.face_count = c.face_count;
+  parent_.edge_count = c.edge_count;
+  return parent_.ref();
+}
+
+void Refiner::step(std::span<const int32_t> q, float step, unsigned threads) {
+  const TopologyRef t = current_topology(threads);
+  const uint32_t evens = t.vertex_count, odds = t.edge_count;
+  next_positions_.resize_for_overwrite(3 * (size_t{evens} + odds));
+  const float* p = positions_.data();
+  float* out = next_positions_.data();
+  float* out_odd = out + 3 * size_t{evens};
+  // Pass 1: every odd vertex at its stencil point (normals need all of
+  // them); straight into the output when nothing moves.
+  float* points = out_odd;
+  if (!q.empty()) {
+    stencil_points_.resize_for_overwrite(3 * size_t{odds});
+    points = stencil_points_.data();
+  }
+  parallel_ranges(t.face_count, threads, [&](uint32_t fb, uint32_t fe) {
+    stencil_points(t, p, fb, fe, points);
+    const size_t vb = size_t{evens} * fb / t.face_count, ve = size_t{evens} * fe / t.face_count;
+    std::memcpy(out + 3 * vb, p + 3 * vb, sizeof(float) * 3 * (ve - vb));
+  });
+  // Pass 2: normals from the undisplaced level, the displacements, and the
+  // next level's triangles.
+  triangles_.resize_for_overwrite(12 * size_t{t.face_count});
+  parallel_ranges(t.face_count, threads, [&](uint32_t fb, uint32_t fe) {
+    if (!q.empty()) displaced_points(t, p, points, q.data(), step, fb, fe, out_odd);
+    refine_triangle_range(t, fb, fe, triangles_.data());
+  });
+  positions_.swap(next_positions_);
+  ++level_;
+}
+
+}  // namespace dbss::detail
