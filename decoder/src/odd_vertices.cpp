@@ -1,5 +1,6 @@
 #include "odd_vertices.h"
 
+#include <bit>
 #include <cmath>
 
 #include "butterfly_terms.h"
@@ -83,44 +84,71 @@ void displaced_points(const TopologyRef& t, const float* p, const float* odd, co
   const double delta = step;
   const auto pos = [&](uint32_t v) { return p + 3 * size_t{v}; };
   const auto mid = [&](uint32_t x) { return odd + 3 * size_t{t.edge_of[x]}; };  // odd vertex of half-edge x
+  // Edges go in batches of consecutive numbers: the ring sums first (scalar,
+  // gather-bound), then the lengths, square roots and divisions of the
+  // whole batch in one loop the compiler can vectorise (each lane is the
+  // spec's own sequence of binary64 operations).
+  constexpr uint32_t kBatch = 32;
+  double nx[kBatch], ny[kBatch], nz[kBatch];
   uint32_t e = first_edge_of_face(t, fb);
-  for (uint32_t h = 3 * fb; h < 3 * fe; ++h) {
-    const uint32_t o = t.twin[h];
-    if (o < h) continue;
-    const float* m = odd + 3 * size_t{e};
-    const float* u = pos(t.tri[h]);
-    const float* w = pos(t.tri[next_half(h)]);
-    // Ring counter-clockwise around m and its consecutive pairs (the table
-    // of spec section 6).
-    D3 n{0, 0, 0};
-    if (o != kNoHalfEdge) {
-      const D3 r0 = from(m, mid(prev_half(h))), r1 = from(m, u), r2 = from(m, mid(next_half(o)));
-      const D3 r3 = from(m, mid(prev_half(o))), r4 = from(m, w), r5 = from(m, mid(next_half(h)));
-      add_cross(n, r0, r1);
-      add_cross(n, r1, r2);
-      add_cross(n, r2, r3);
-      add_cross(n, r3, r4);
-      add_cross(n, r4, r5);
-      add_cross(n, r5, r0);
-    } else {
-      const D3 r0 = from(m, w), r1 = from(m, mid(next_half(h))), r2 = from(m, mid(prev_half(h))), r3 = from(m, u);
-      add_cross(n, r0, r1);
-      add_cross(n, r1, r2);
-      add_cross(n, r2, r3);
+  uint32_t h = 3 * fb;
+  const uint32_t end = 3 * fe;
+  while (h < end) {
+    const uint32_t e0 = e;
+    uint32_t n = 0;
+    for (; h < end && n < kBatch; ++h) {
+      const uint32_t o = t.twin[h];
+      if (o < h) continue;  // the edge was opened by its twin
+      const float* m = odd + 3 * size_t{e0 + n};
+      const float* u = pos(t.tri[h]);
+      const float* w = pos(t.tri[next_half(h)]);
+      // Ring counter-clockwise around m and its consecutive pairs (the
+      // table of spec section 6).
+      D3 s{0, 0, 0};
+      if (o != kNoHalfEdge) {
+        const D3 r0 = from(m, mid(prev_half(h))), r1 = from(m, u), r2 = from(m, mid(next_half(o)));
+        const D3 r3 = from(m, mid(prev_half(o))), r4 = from(m, w), r5 = from(m, mid(next_half(h)));
+        add_cross(s, r0, r1);
+        add_cross(s, r1, r2);
+        add_cross(s, r2, r3);
+        add_cross(s, r3, r4);
+        add_cross(s, r4, r5);
+        add_cross(s, r5, r0);
+      } else {
+        const D3 r0 = from(m, w), r1 = from(m, mid(next_half(h))), r2 = from(m, mid(prev_half(h))), r3 = from(m, u);
+        add_cross(s, r0, r1);
+        add_cross(s, r1, r2);
+        add_cross(s, r2, r3);
+      }
+      nx[n] = s.x, ny[n] = s.y, nz[n] = s.z;
+      ++n;
     }
-    const double len = std::sqrt(n.x * n.x + n.y * n.y + n.z * n.z);
-    if (len > 0) {
-      const double inv = 1.0 / len;
-      n = {n.x * inv, n.y * inv, n.z * inv};
-    } else {
-      n = {0, 0, 0};
+    // Unit normals; zero when the length is zero.  Two plain loops so the
+    // compiler vectorises them: the products with 1/len are computed for
+    // every lane (a discarded 1/0 raises no trap) and selected afterwards.
+    double len[kBatch];
+    for (uint32_t i = 0; i < kBatch; ++i) {
+      len[i] = std::sqrt(nx[i] * nx[i] + ny[i] * ny[i] + nz[i] * nz[i]);
+      const double inv = 1.0 / len[i];
+      nx[i] = nx[i] * inv, ny[i] = ny[i] * inv, nz[i] = nz[i] * inv;
     }
-    const double d = static_cast<double>(q[e]) * delta;
-    float* v = out + 3 * size_t{e};
-    v[0] = static_cast<float>(m[0] + d * n.x);
-    v[1] = static_cast<float>(m[1] + d * n.y);
-    v[2] = static_cast<float>(m[2] + d * n.z);
-    ++e;
+    // len > 0 (not zero, not NaN) on the bit patterns, as a mask: integer
+    // operations vectorise where a floating-point select would not.
+    for (uint32_t i = 0; i < kBatch; ++i) {
+      const uint64_t keep = std::bit_cast<uint64_t>(len[i]) - 1 < 0x7FF0000000000000u ? ~uint64_t{0} : 0;
+      nx[i] = std::bit_cast<double>(std::bit_cast<uint64_t>(nx[i]) & keep);
+      ny[i] = std::bit_cast<double>(std::bit_cast<uint64_t>(ny[i]) & keep);
+      nz[i] = std::bit_cast<double>(std::bit_cast<uint64_t>(nz[i]) & keep);
+    }
+    for (uint32_t i = 0; i < n; ++i) {
+      const double d = static_cast<double>(q[e0 + i]) * delta;
+      const float* m = odd + 3 * size_t{e0 + i};
+      float* v = out + 3 * size_t{e0 + i};
+      v[0] = static_cast<float>(m[0] + d * nx[i]);
+      v[1] = static_cast<float>(m[1] + d * ny[i]);
+      v[2] = static_cast<float>(m[2] + d * nz[i]);
+    }
+    e = e0 + n;
   }
 }
 
