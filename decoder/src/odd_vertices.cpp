@@ -61,29 +61,41 @@ inline void add_cross(D3& n, const D3& a, const D3& b) {
 
 }  // namespace
 
-void stencil_points(const TopologyRef& t, const float* p, uint32_t fb, uint32_t fe, float* odd) {
+void stencil_points(const TopologyRef& t, const float* p, uint32_t fb, uint32_t fe, float* odd, float* per_half) {
   uint32_t e = first_edge_of_face(t, fb);
   for (uint32_t h = 3 * fb; h < 3 * fe; ++h) {
     const uint32_t o = t.twin[h];
     if (o < h) continue;  // the edge was opened by its twin
-    float* out = odd + 3 * size_t{e++};
+    float point[3];
     if (o != kNoHalfEdge && regular_end(t, t.tri[h]) && regular_end(t, t.tri[next_half(h)])) {
       uint32_t r[8];
       regular_vertices(t, h, o, r);
-      regular_point(p, r, out);
+      regular_point(p, r, point);
     } else {
       Sum s{p};
       edge_terms(t, h, s);
-      out[0] = static_cast<float>(s.x), out[1] = static_cast<float>(s.y), out[2] = static_cast<float>(s.z);
+      point[0] = static_cast<float>(s.x), point[1] = static_cast<float>(s.y), point[2] = static_cast<float>(s.z);
     }
+    if (odd) {
+      float* out = odd + 3 * size_t{e};
+      out[0] = point[0], out[1] = point[1], out[2] = point[2];
+    } else {
+      float* out = per_half + 3 * size_t{h};
+      out[0] = point[0], out[1] = point[1], out[2] = point[2];
+      if (o != kNoHalfEdge) {
+        out = per_half + 3 * size_t{o};
+        out[0] = point[0], out[1] = point[1], out[2] = point[2];
+      }
+    }
+    ++e;
   }
 }
 
-void displaced_points(const TopologyRef& t, const float* p, const float* odd, const int32_t* q, float step,
+void displaced_points(const TopologyRef& t, const float* p, const float* per_half, const int32_t* q, float step,
                       uint32_t fb, uint32_t fe, float* out) {
   const double delta = step;
   const auto pos = [&](uint32_t v) { return p + 3 * size_t{v}; };
-  const auto mid = [&](uint32_t x) { return odd + 3 * size_t{t.edge_of[x]}; };  // odd vertex of half-edge x
+  const auto mid = [&](uint32_t x) { return per_half + 3 * size_t{x}; };  // odd vertex of half-edge x
   // Edges go in batches of consecutive numbers: the ring sums first (scalar,
   // gather-bound), then the lengths, square roots and divisions of the
   // whole batch in one loop the compiler can vectorise (each lane is the
@@ -94,12 +106,12 @@ void displaced_points(const TopologyRef& t, const float* p, const float* odd, co
   uint32_t h = 3 * fb;
   const uint32_t end = 3 * fe;
   while (h < end) {
-    const uint32_t e0 = e;
+    const uint32_t e0 = e, batch_begin = h;
     uint32_t n = 0;
     for (; h < end && n < kBatch; ++h) {
       const uint32_t o = t.twin[h];
       if (o < h) continue;  // the edge was opened by its twin
-      const float* m = odd + 3 * size_t{e0 + n};
+      const float* m = mid(h);
       const float* u = pos(t.tri[h]);
       const float* w = pos(t.tri[next_half(h)]);
       // Ring counter-clockwise around m and its consecutive pairs (the
@@ -140,9 +152,10 @@ void displaced_points(const TopologyRef& t, const float* p, const float* odd, co
       ny[i] = std::bit_cast<double>(std::bit_cast<uint64_t>(ny[i]) & keep);
       nz[i] = std::bit_cast<double>(std::bit_cast<uint64_t>(nz[i]) & keep);
     }
-    for (uint32_t i = 0; i < n; ++i) {
+    for (uint32_t i = 0, x = batch_begin; i < n; ++i, ++x) {
+      while (t.twin[x] < x) ++x;  // the i-th opening half-edge of the batch
       const double d = static_cast<double>(q[e0 + i]) * delta;
-      const float* m = odd + 3 * size_t{e0 + i};
+      const float* m = mid(x);
       float* v = out + 3 * size_t{e0 + i};
       v[0] = static_cast<float>(m[0] + d * nx[i]);
       v[1] = static_cast<float>(m[1] + d * ny[i]);

@@ -12,15 +12,17 @@
 
 namespace dbss::detail {
 
-// Writes the stencil point of every edge opened by faces [fb, fe) of `t` to
-// odd[3e..3e+2] (e its edge number); p holds the level's positions.
-void stencil_points(const TopologyRef& t, const float* p, uint32_t fb, uint32_t fe, float* odd);
+// Computes the stencil point of every edge opened by faces [fb, fe) of `t`
+// (p: the level's positions) and writes it either to odd[3e..3e+2] (e its
+// edge number), or, when `odd` is null, to per_half[3x..3x+2] for both
+// half-edges x of the edge: the normal pass then finds the ring of an odd
+// vertex in the two triangles of its edge, without chasing edge numbers.
+void stencil_points(const TopologyRef& t, const float* p, uint32_t fb, uint32_t fe, float* odd, float* per_half);
 
 // For the same edges: the normal at the odd vertex from the undisplaced
-// child level (evens p, odds `odd` as stencil_points wrote them), and
-// out[3e..] = odd vertex moved by q[e] * step along it.  `out` must not
-// alias `odd`: other normals still read the undisplaced points.
-void displaced_points(const TopologyRef& t, const float* p, const float* odd, const int32_t* q, float step,
+// child level (evens p, odds per half-edge as stencil_points wrote them),
+// and out[3e..] = odd vertex moved by q[e] * step along it.
+void displaced_points(const TopologyRef& t, const float* p, const float* per_half, const int32_t* q, float step,
                       uint32_t fb, uint32_t fe, float* out);
 
 }  // namespace dbss::detail

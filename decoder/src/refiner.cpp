@@ -68,14 +68,14 @@ void Refiner::step(std::span<const int32_t> q, float step, unsigned threads) {
   float* out = next_positions_.data();
   float* out_odd = out + 3 * size_t{evens};
   // Pass 1: every odd vertex at its stencil point (normals need all of
-  // them); straight into the output when nothing moves.
-  float* points = out_odd;
+  // them); straight into the output when nothing moves, else per half-edge.
+  float* per_half = nullptr;
   if (!q.empty()) {
-    stencil_points_.resize_for_overwrite(3 * size_t{odds});
-    points = stencil_points_.data();
+    stencil_points_.resize_for_overwrite(9 * size_t{t.face_count});
+    per_half = stencil_points_.data();
   }
   parallel_ranges(t.face_count, threads, [&](uint32_t fb, uint32_t fe) {
-    stencil_points(t, p, fb, fe, points);
+    stencil_points(t, p, fb, fe, per_half ? nullptr : out_odd, per_half);
     const size_t vb = size_t{evens} * fb / t.face_count, ve = size_t{evens} * fe / t.face_count;
     std::memcpy(out + 3 * vb, p + 3 * vb, sizeof(float) * 3 * (ve - vb));
   });
@@ -83,7 +83,7 @@ void Refiner::step(std::span<const int32_t> q, float step, unsigned threads) {
   // next level's triangles.
   triangles_.resize_for_overwrite(12 * size_t{t.face_count});
   parallel_ranges(t.face_count, threads, [&](uint32_t fb, uint32_t fe) {
-    if (!q.empty()) displaced_points(t, p, points, q.data(), step, fb, fe, out_odd);
+    if (!q.empty()) displaced_points(t, p, per_half, q.data(), step, fb, fe, out_odd);
     refine_triangle_range(t, fb, fe, triangles_.data());
   });
   positions_.swap(next_positions_);
