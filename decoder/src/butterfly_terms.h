@@ -15,12 +15,11 @@ inline bool regular_end(const TopologyRef& t, uint32_t v) noexcept { return !t.b
 // u, w, c, d, then the wings across w-c, c-u, u-d, d-w.
 inline void regular_vertices(const TopologyRef& t, uint32_t h, uint32_t o, uint32_t r[8]) noexcept {
   const uint32_t* tri = t.tri;
-  const uint32_t* twin = t.twin;
-  r[0] = tri[h], r[1] = tri[next_half(h)], r[2] = tri[prev_half(h)], r[3] = tri[prev_half(o)];
-  r[4] = tri[prev_half(twin[next_half(h)])];
-  r[5] = tri[prev_half(twin[prev_half(h)])];
-  r[6] = tri[prev_half(twin[next_half(o)])];
-  r[7] = tri[prev_half(twin[prev_half(o)])];
+  r[0] = tri[h], r[1] = tri[next_half(h)], r[2] = tri[prev_half(h)], r[3] = across_of(t, h);
+  r[4] = across_of(t, next_half(h));
+  r[5] = across_of(t, prev_half(h));
+  r[6] = across_of(t, next_half(o));
+  r[7] = across_of(t, prev_half(o));
 }
 
 inline constexpr double kRegularWeights[8] = {0.5, 0.5, 1.0 / 8, 1.0 / 8, -1.0 / 16, -1.0 / 16, -1.0 / 16, -1.0 / 16};

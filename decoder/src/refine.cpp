@@ -91,7 +91,7 @@ void refine_faces(const TopologyRef& p, uint32_t fb, uint32_t fe, const Topology
       const uint32_t x = cf + s;
       if (slot_opens(open, s)) {
         c.edge_of[x] = ce;
-        c.edge_half[ce] = x;
+        if (c.edge_half) c.edge_half[ce] = x;
         ++ce;
       } else if (s % 3 == 0) {
         const uint32_t g = ptw[s / 3];  // first half of 3f+k pairs with the second half of g
@@ -102,6 +102,23 @@ void refine_faces(const TopologyRef& p, uint32_t fb, uint32_t fe, const Topology
       }
     }
     for (uint32_t j = 0; j < 3; ++j) c.edge_of[cf + 9 + j] = c.edge_of[cf + 3 * ((j + 1) % 3) + 1];
+    if (c.across) {
+      // The vertex across each child half-edge: inside f a corner or odd
+      // vertex of f; across a split half, the odd vertex of the neighbour's
+      // half-edge that the neighbour's child triangle ends at.
+      const uint32_t* eo = p.edge_of + 3 * size_t{f};
+      const uint32_t* tri = p.tri + 3 * size_t{f};
+      const auto odd_of = [&](uint32_t g, uint32_t step) {
+        return p.vertex_count + p.edge_of[3 * (g / 3) + (g % 3 + step) % 3];
+      };
+      for (uint32_t k = 0; k < 3; ++k) {
+        const uint32_t ph = ptw[k], pp = ptw[(k + 2) % 3];
+        c.across[cf + 3 * k + 0] = ph == kNoHalfEdge ? kNoHalfEdge : odd_of(ph, 1);
+        c.across[cf + 3 * k + 1] = p.vertex_count + eo[(k + 1) % 3];
+        c.across[cf + 3 * k + 2] = pp == kNoHalfEdge ? kNoHalfEdge : odd_of(pp, 2);
+        c.across[cf + 9 + k] = tri[(k + 1) % 3];
+      }
+    }
     // Odd vertices of the parent edges f opens: valence 6, or 4 on a
     // boundary edge where the fan starts at the outgoing boundary half
     // m_k -> v_{k+1} (child k+1, slot 2).

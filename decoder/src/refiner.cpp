@@ -9,23 +9,32 @@ namespace dbss::detail {
 
 TopologyRef Refiner::Topology::ref() const {
   return {vertex_count,  face_count,          edge_count,     tri.data(),     twin.data(),
-          edge_of.data(), vertex_start.data(), valence.data(), boundary.data()};
+          edge_of.data(), vertex_start.data(), valence.data(), boundary.data(), across.data()};
 }
 
 void Refiner::reset(const LevelTopology& base, std::span<const float> base_positions) {
   base_ = &base;
   level_ = 0;
+  const TopologyRef b = ref_of(base);
+  base_across_.resize_for_overwrite(3 * size_t{b.face_count});
+  for (uint32_t x = 0; x < 3 * b.face_count; ++x) base_across_[x] = across_of(b, x);
   positions_.resize_for_overwrite(base_positions.size());
   std::memcpy(positions_.data(), base_positions.data(), base_positions.size_bytes());
   triangles_.resize_for_overwrite(base.triangles.size());
   std::memcpy(triangles_.data(), base.triangles.data(), base.triangles.size() * sizeof(uint32_t));
 }
 
+TopologyRef Refiner::base_topology() const {
+  TopologyRef t = ref_of(*base_);
+  t.across = base_across_.data();
+  return t;
+}
+
 TopologyRef Refiner::current_topology(unsigned threads) {
-  if (level_ == 0) return ref_of(*base_);
+  if (level_ == 0) return base_topology();
   // Level L's triangles are already in triangles_: they move into the
   // topology instead of being split out of L-1 again.
-  const TopologyRef p = level_ == 1 ? ref_of(*base_) : parent_.ref();
+  const TopologyRef p = level_ == 1 ? base_topology() : parent_.ref();
   Topology& c = spare_;
   c.vertex_count = p.vertex_count + p.edge_count;
   c.face_count = 4 * p.face_count;
@@ -34,12 +43,12 @@ TopologyRef Refiner::current_topology(unsigned threads) {
   c.tri.swap(triangles_);
   c.twin.resize_for_overwrite(halves);
   c.edge_of.resize_for_overwrite(halves);
-  c.edge_half.resize_for_overwrite(c.edge_count);
+  c.across.resize_for_overwrite(halves);
   c.vertex_start.resize_for_overwrite(c.vertex_count);
   c.valence.resize_for_overwrite(c.vertex_count);
   c.boundary.resize_for_overwrite(c.vertex_count);
-  const TopologyOut out{nullptr,          c.twin.data(),         c.edge_of.data(), c.edge_half.data(),
-                        c.vertex_start.data(), c.valence.data(), c.boundary.data()};
+  const TopologyOut out{nullptr,          c.twin.data(),    c.edge_of.data(),  nullptr,
+                        c.vertex_start.data(), c.valence.data(), c.boundary.data(), c.across.data()};
   parallel_ranges(p.face_count, threads, [&](uint32_t fb, uint32_t fe) {
     refine_faces(p, fb, fe, out);
     // Even vertices: the same share of the parent's vertices.
@@ -50,7 +59,7 @@ TopologyRef Refiner::current_topology(unsigned threads) {
   parent_.tri.swap(c.tri);  // parent_ becomes level L; its old buffers are reused next time
   parent_.twin.swap(c.twin);
   parent_.edge_of.swap(c.edge_of);
-  parent_.edge_half.swap(c.edge_half);
+  parent_.across.swap(c.across);
   parent_.vertex_start.swap(c.vertex_start);
   parent_.valence.swap(c.valence);
   parent_.boundary.swap(c.boundary);

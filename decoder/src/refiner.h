@@ -31,15 +31,17 @@ class Refiner {
  private:
   struct Topology {
     uint32_t vertex_count = 0, face_count = 0, edge_count = 0;
-    Buffer<uint32_t> tri, twin, edge_of, edge_half, vertex_start;
+    Buffer<uint32_t> tri, twin, edge_of, vertex_start, across;
     Buffer<uint16_t> valence;
     Buffer<uint8_t> boundary;
     TopologyRef ref() const;
   };
+  TopologyRef base_topology() const;
   // The connectivity of the current level (built from `parent_`), as a ref.
   TopologyRef current_topology(unsigned threads);
 
   const LevelTopology* base_ = nullptr;
+  Buffer<uint32_t> base_across_;
   uint32_t level_ = 0;
   Topology parent_, spare_;  // levels L-1 and (scratch for) L
   Buffer<float> positions_, next_positions_, stencil_points_;

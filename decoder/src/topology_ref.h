@@ -17,7 +17,17 @@ struct TopologyRef {
   const uint32_t* vertex_start = nullptr;  // per vertex
   const uint16_t* valence = nullptr;       // per vertex
   const uint8_t* boundary = nullptr;       // per vertex
+  // Optional, 3 per face: the vertex across half-edge x, T[prev(twin(x))]
+  // (kNoHalfEdge on the boundary).  Saves the stencils a dependent load per
+  // wing; null means "look it up through twin".
+  const uint32_t* across = nullptr;
 };
+
+inline uint32_t across_of(const TopologyRef& t, uint32_t x) noexcept {
+  if (t.across) return t.across[x];
+  const uint32_t o = t.twin[x];
+  return o == kNoHalfEdge ? kNoHalfEdge : t.tri[prev_half(o)];
+}
 
 inline TopologyRef ref_of(const LevelTopology& t) {
   return {t.vertex_count,         t.triangle_count(),    t.edge_count(),         t.triangles.data(),
@@ -38,14 +48,16 @@ inline uint32_t first_edge_of_face(const TopologyRef& t, uint32_t f) noexcept {
 }
 
 // Where the refinement of a parent level writes the child level's tables.
+// tri, edge_half and across may be null: not wanted.
 struct TopologyOut {
-  uint32_t* tri;  // may be null when the caller already has the triangles
+  uint32_t* tri;
   uint32_t* twin;
   uint32_t* edge_of;
   uint32_t* edge_half;
   uint32_t* vertex_start;
   uint16_t* valence;
   uint8_t* boundary;
+  uint32_t* across = nullptr;
 };
 
 // The child tables of parent faces [fb, fe) (their 4 children each, and the
