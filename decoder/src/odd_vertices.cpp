@@ -1,5 +1,6 @@
 #include "odd_vertices.h"
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 
@@ -62,10 +63,11 @@ inline void add_cross(D3& n, const D3& a, const D3& b) {
 }  // namespace
 
 void stencil_points(const TopologyRef& t, const float* p, uint32_t fb, uint32_t fe, float* odd, float* per_half) {
-  uint32_t e = first_edge_of_face(t, fb);
-  for (uint32_t h = 3 * fb; h < 3 * fe; ++h) {
-    const uint32_t o = t.twin[h];
-    if (o < h) continue;  // the edge was opened by its twin
+  // Edges in order through edge_half: no test per half-edge whether it
+  // opens an edge (a branch the processor mispredicts often).
+  const uint32_t end = first_edge_of_face(t, fe);
+  for (uint32_t e = first_edge_of_face(t, fb); e < end; ++e) {
+    const uint32_t h = t.edge_half[e], o = t.twin[h];
     float point[3];
     if (o != kNoHalfEdge && regular_end(t, t.tri[h]) && regular_end(t, t.tri[next_half(h)])) {
       uint32_t r[8];
@@ -87,7 +89,6 @@ void stencil_points(const TopologyRef& t, const float* p, uint32_t fb, uint32_t 
         out[0] = point[0], out[1] = point[1], out[2] = point[2];
       }
     }
-    ++e;
   }
 }
 
@@ -101,16 +102,12 @@ void displaced_points(const TopologyRef& t, const float* p, const float* per_hal
   // whole batch in one loop the compiler can vectorise (each lane is the
   // spec's own sequence of binary64 operations).
   constexpr uint32_t kBatch = 32;
-  double nx[kBatch], ny[kBatch], nz[kBatch];
-  uint32_t e = first_edge_of_face(t, fb);
-  uint32_t h = 3 * fb;
-  const uint32_t end = 3 * fe;
-  while (h < end) {
-    const uint32_t e0 = e, batch_begin = h;
-    uint32_t n = 0;
-    for (; h < end && n < kBatch; ++h) {
-      const uint32_t o = t.twin[h];
-      if (o < h) continue;  // the edge was opened by its twin
+  double nx[kBatch] = {}, ny[kBatch] = {}, nz[kBatch] = {};  // lanes past a short batch stay finite
+  const uint32_t end = first_edge_of_face(t, fe);
+  for (uint32_t e0 = first_edge_of_face(t, fb); e0 < end; e0 += kBatch) {
+    const uint32_t n = std::min(kBatch, end - e0);
+    for (uint32_t i = 0; i < n; ++i) {
+      const uint32_t h = t.edge_half[e0 + i], o = t.twin[h];
       const float* m = mid(h);
       const float* u = pos(t.tri[h]);
       const float* w = pos(t.tri[next_half(h)]);
@@ -132,8 +129,7 @@ void displaced_points(const TopologyRef& t, const float* p, const float* per_hal
         add_cross(s, r1, r2);
         add_cross(s, r2, r3);
       }
-      nx[n] = s.x, ny[n] = s.y, nz[n] = s.z;
-      ++n;
+      nx[i] = s.x, ny[i] = s.y, nz[i] = s.z;
     }
     // Unit normals; zero when the length is zero.  Two plain loops so the
     // compiler vectorises them: the products with 1/len are computed for
@@ -152,16 +148,14 @@ void displaced_points(const TopologyRef& t, const float* p, const float* per_hal
       ny[i] = std::bit_cast<double>(std::bit_cast<uint64_t>(ny[i]) & keep);
       nz[i] = std::bit_cast<double>(std::bit_cast<uint64_t>(nz[i]) & keep);
     }
-    for (uint32_t i = 0, x = batch_begin; i < n; ++i, ++x) {
-      while (t.twin[x] < x) ++x;  // the i-th opening half-edge of the batch
+    for (uint32_t i = 0; i < n; ++i) {
       const double d = static_cast<double>(q[e0 + i]) * delta;
-      const float* m = mid(x);
+      const float* m = mid(t.edge_half[e0 + i]);
       float* v = out + 3 * size_t{e0 + i};
       v[0] = static_cast<float>(m[0] + d * nx[i]);
       v[1] = static_cast<float>(m[1] + d * ny[i]);
       v[2] = static_cast<float>(m[2] + d * nz[i]);
     }
-    e = e0 + n;
   }
 }
 

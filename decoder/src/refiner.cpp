@@ -8,8 +8,12 @@
 namespace dbss::detail {
 
 TopologyRef Refiner::Topology::ref() const {
-  return {vertex_count,  face_count,          edge_count,     tri.data(),     twin.data(),
-          edge_of.data(), vertex_start.data(), valence.data(), boundary.data(), across.data()};
+  TopologyRef r;
+  r.vertex_count = vertex_count, r.face_count = face_count, r.edge_count = edge_count;
+  r.tri = tri.data(), r.twin = twin.data(), r.edge_of = edge_of.data(), r.edge_half = edge_half.data();
+  r.vertex_start = vertex_start.data(), r.valence = valence.data(), r.boundary = boundary.data();
+  r.across = across.data();
+  return r;
 }
 
 void Refiner::reset(const LevelTopology& base, std::span<const float> base_positions) {
@@ -44,10 +48,11 @@ TopologyRef Refiner::current_topology(unsigned threads) {
   c.twin.resize_for_overwrite(halves);
   c.edge_of.resize_for_overwrite(halves);
   c.across.resize_for_overwrite(halves);
+  c.edge_half.resize_for_overwrite(c.edge_count);
   c.vertex_start.resize_for_overwrite(c.vertex_count);
   c.valence.resize_for_overwrite(c.vertex_count);
   c.boundary.resize_for_overwrite(c.vertex_count);
-  const TopologyOut out{nullptr,          c.twin.data(),    c.edge_of.data(),  nullptr,
+  const TopologyOut out{nullptr,          c.twin.data(),    c.edge_of.data(),  c.edge_half.data(),
                         c.vertex_start.data(), c.valence.data(), c.boundary.data(), c.across.data()};
   parallel_ranges(p.face_count, threads, [&](uint32_t fb, uint32_t fe) {
     refine_faces(p, fb, fe, out);
@@ -60,6 +65,7 @@ TopologyRef Refiner::current_topology(unsigned threads) {
   parent_.twin.swap(c.twin);
   parent_.edge_of.swap(c.edge_of);
   parent_.across.swap(c.across);
+  parent_.edge_half.swap(c.edge_half);
   parent_.vertex_start.swap(c.vertex_start);
   parent_.valence.swap(c.valence);
   parent_.boundary.swap(c.boundary);

@@ -31,7 +31,7 @@ class Refiner {
  private:
   struct Topology {
     uint32_t vertex_count = 0, face_count = 0, edge_count = 0;
-    Buffer<uint32_t> tri, twin, edge_of, vertex_start, across;
+    Buffer<uint32_t> tri, twin, edge_of, edge_half, vertex_start, across;
     Buffer<uint16_t> valence;
     Buffer<uint8_t> boundary;
     TopologyRef ref() const;

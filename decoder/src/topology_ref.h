@@ -14,6 +14,7 @@ struct TopologyRef {
   const uint32_t* tri = nullptr;           // 3 per face
   const uint32_t* twin = nullptr;          // 3 per face
   const uint32_t* edge_of = nullptr;       // 3 per face
+  const uint32_t* edge_half = nullptr;     // per edge: its first half-edge
   const uint32_t* vertex_start = nullptr;  // per vertex
   const uint16_t* valence = nullptr;       // per vertex
   const uint8_t* boundary = nullptr;       // per vertex
@@ -30,9 +31,11 @@ inline uint32_t across_of(const TopologyRef& t, uint32_t x) noexcept {
 }
 
 inline TopologyRef ref_of(const LevelTopology& t) {
-  return {t.vertex_count,         t.triangle_count(),    t.edge_count(),         t.triangles.data(),
-          t.twin.data(),          t.edge_of.data(),      t.vertex_start.data(),  t.vertex_valence.data(),
-          t.vertex_boundary.data()};
+  TopologyRef r;
+  r.vertex_count = t.vertex_count, r.face_count = t.triangle_count(), r.edge_count = t.edge_count();
+  r.tri = t.triangles.data(), r.twin = t.twin.data(), r.edge_of = t.edge_of.data(), r.edge_half = t.edge_half.data();
+  r.vertex_start = t.vertex_start.data(), r.valence = t.vertex_valence.data(), r.boundary = t.vertex_boundary.data();
+  return r;
 }
 
 // Half-edge h opens an edge (is its first half-edge) when it has no twin or
