@@ -65,9 +65,16 @@ struct ProgressiveDecoder::State {
     have_current = true;
   }
 
-  void step() {
+  Status step() {
     const format::Level& data = reader.level(current.level() + 1);
+    // The reader sized q from the header's counts, which the control mesh
+    // matched; checked again here because the kernels index q without bounds.
+    if (!data.q.empty() && data.q.size() != current.next_odd_count())
+      return fail(ErrorCode::bad_mesh, "level " + std::to_string(current.level() + 1) + " has " +
+                                           std::to_string(data.q.size()) + " displacements for " +
+                                           std::to_string(current.next_odd_count()) + " odd vertices");
     current.step(data.q, data.step, threads);
+    return {};
   }
 
   MeshView view() const { return {current.level(), current.positions(), current.triangles()}; }
@@ -110,7 +117,7 @@ Result<MeshView> ProgressiveDecoder::decode(uint32_t level) {
       return MeshView{level, s.kept_positions[level], s.kept_triangles[level]};
     if (!s.have_current || level < s.current.level()) s.reset_to_base();
     while (s.current.level() < level) {
-      s.step();
+      if (Status st = s.step(); !st.ok()) return st;
       if (s.options.keep_levels) {
         if (s.kept_positions.empty()) {
           s.kept_positions.push_back(s.base_positions);
