@@ -68,11 +68,15 @@ struct ProgressiveDecoder::State {
   Status step() {
     const format::Level& data = reader.level(current.level() + 1);
     // The reader sized q from the header's counts, which the control mesh
-    // matched; checked again here because the kernels index q without bounds.
-    if (!data.q.empty() && data.q.size() != current.next_odd_count())
+    // matched, and bounded them by its limits; both checked again here
+    // because the kernels index q without bounds and count in 32 bits.
+    const detail::Refiner::Counts c = current.counts();
+    if (!data.q.empty() && data.q.size() != c.edges)
       return fail(ErrorCode::bad_mesh, "level " + std::to_string(current.level() + 1) + " has " +
                                            std::to_string(data.q.size()) + " displacements for " +
-                                           std::to_string(current.next_odd_count()) + " odd vertices");
+                                           std::to_string(c.edges) + " odd vertices");
+    if (c.vertices + c.edges >= kNoHalfEdge || 12 * c.faces >= kNoHalfEdge)
+      return fail(ErrorCode::limit_exceeded, "level " + std::to_string(current.level() + 1) + " is too large");
     current.step(data.q, data.step, threads);
     return {};
   }

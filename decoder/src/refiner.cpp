@@ -28,10 +28,11 @@ void Refiner::reset(const LevelTopology& base, std::span<const float> base_posit
   std::memcpy(triangles_.data(), base.triangles.data(), base.triangles.size() * sizeof(uint32_t));
 }
 
-uint64_t Refiner::next_odd_count() const noexcept {
-  if (level_ == 0) return base_->edge_count();
-  const TopologyRef p = level_ == 1 ? ref_of(*base_) : parent_.ref();
-  return 2 * uint64_t{p.edge_count} + 3 * uint64_t{p.face_count};
+Refiner::Counts Refiner::counts() const noexcept {
+  const TopologyRef p = level_ <= 1 ? ref_of(*base_) : parent_.ref();
+  if (level_ == 0) return {p.vertex_count, p.edge_count, p.face_count};
+  return {uint64_t{p.vertex_count} + p.edge_count, 2 * uint64_t{p.edge_count} + 3 * uint64_t{p.face_count},
+          4 * uint64_t{p.face_count}};
 }
 
 TopologyRef Refiner::base_topology() const {

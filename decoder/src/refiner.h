@@ -25,8 +25,12 @@ class Refiner {
   void step(std::span<const int32_t> q, float step, unsigned threads);
 
   uint32_t level() const noexcept { return level_; }
-  // Odd vertices the next step creates: the current level's edge count.
-  uint64_t next_odd_count() const noexcept;
+  // Counts of the current level (E is the number of odd vertices the next
+  // step creates), in 64 bits so callers can check the next level fits.
+  struct Counts {
+    uint64_t vertices, edges, faces;
+  };
+  Counts counts() const noexcept;
   std::span<const float> positions() const noexcept { return positions_.span(); }
   std::span<const uint32_t> triangles() const noexcept { return triangles_.span(); }
 
