@@ -97,39 +97,58 @@ void displaced_points(const TopologyRef& t, const float* p, const float* per_hal
   const double delta = step;
   const auto pos = [&](uint32_t v) { return p + 3 * size_t{v}; };
   const auto mid = [&](uint32_t x) { return per_half + 3 * size_t{x}; };  // odd vertex of half-edge x
-  // Edges go in batches of consecutive numbers: the ring sums first (scalar,
-  // gather-bound), then the lengths, square roots and divisions of the
-  // whole batch in one loop the compiler can vectorise (each lane is the
-  // spec's own sequence of binary64 operations).
+  // Edges go in batches of consecutive numbers, stored lane by lane
+  // (structure of arrays) so that the arithmetic loops below run on several
+  // edges per instruction; each lane still performs the spec's own sequence
+  // of binary64 operations.  First the gathers (bound by memory), then the
+  // ring sums, then lengths, square roots and divisions.
   constexpr uint32_t kBatch = 32;
-  double nx[kBatch] = {}, ny[kBatch] = {}, nz[kBatch] = {};  // lanes past a short batch stay finite
+  // Ring vertices r[k][coordinate][lane] and the odd vertex itself; lanes
+  // past a short batch keep earlier, finite values.
+  double r[6][3][kBatch] = {}, mx[kBatch] = {}, my[kBatch] = {}, mz[kBatch] = {};
+  double nx[kBatch] = {}, ny[kBatch] = {}, nz[kBatch] = {};
+  uint32_t border[kBatch];  // boundary edges of the batch: 4-vertex rings, summed apart
+  D3 border_sum[kBatch];
   const uint32_t end = first_edge_of_face(t, fe);
   for (uint32_t e0 = first_edge_of_face(t, fb); e0 < end; e0 += kBatch) {
     const uint32_t n = std::min(kBatch, end - e0);
+    uint32_t borders = 0;
     for (uint32_t i = 0; i < n; ++i) {
       const uint32_t h = t.edge_half[e0 + i], o = t.twin[h];
       const float* m = mid(h);
       const float* u = pos(t.tri[h]);
       const float* w = pos(t.tri[next_half(h)]);
-      // Ring counter-clockwise around m and its consecutive pairs (the
-      // table of spec section 6).
-      D3 s{0, 0, 0};
+      mx[i] = m[0], my[i] = m[1], mz[i] = m[2];
       if (o != kNoHalfEdge) {
-        const D3 r0 = from(m, mid(prev_half(h))), r1 = from(m, u), r2 = from(m, mid(next_half(o)));
-        const D3 r3 = from(m, mid(prev_half(o))), r4 = from(m, w), r5 = from(m, mid(next_half(h)));
-        add_cross(s, r0, r1);
-        add_cross(s, r1, r2);
-        add_cross(s, r2, r3);
-        add_cross(s, r3, r4);
-        add_cross(s, r4, r5);
-        add_cross(s, r5, r0);
+        // Ring counter-clockwise around m: m_cu, u, m_ud, m_dw, w, m_wc
+        // (spec section 6).
+        const float* ring[6] = {mid(prev_half(h)), u, mid(next_half(o)), mid(prev_half(o)), w, mid(next_half(h))};
+        for (int k = 0; k < 6; ++k) r[k][0][i] = ring[k][0], r[k][1][i] = ring[k][1], r[k][2][i] = ring[k][2];
       } else {
+        // Boundary: w, m_wc, m_cu, u and three pairs; rare, so plain code.
         const D3 r0 = from(m, w), r1 = from(m, mid(next_half(h))), r2 = from(m, mid(prev_half(h))), r3 = from(m, u);
-        add_cross(s, r0, r1);
-        add_cross(s, r1, r2);
-        add_cross(s, r2, r3);
+        D3 sum{0, 0, 0};
+        add_cross(sum, r0, r1);
+        add_cross(sum, r1, r2);
+        add_cross(sum, r2, r3);
+        border[borders] = i, border_sum[borders++] = sum;
       }
-      nx[i] = s.x, ny[i] = s.y, nz[i] = s.z;
+    }
+    for (uint32_t i = 0; i < kBatch; ++i) {
+      double dx[6], dy[6], dz[6];
+      for (int k = 0; k < 6; ++k) dx[k] = r[k][0][i] - mx[i], dy[k] = r[k][1][i] - my[i], dz[k] = r[k][2][i] - mz[i];
+      double sx = 0, sy = 0, sz = 0;
+      for (int k = 0; k < 6; ++k) {  // pairs (r_k, r_{k+1 mod 6})
+        const int j = k == 5 ? 0 : k + 1;
+        sx = sx + (dy[k] * dz[j] - dz[k] * dy[j]);
+        sy = sy + (dz[k] * dx[j] - dx[k] * dz[j]);
+        sz = sz + (dx[k] * dy[j] - dy[k] * dx[j]);
+      }
+      nx[i] = sx, ny[i] = sy, nz[i] = sz;
+    }
+    for (uint32_t b = 0; b < borders; ++b) {
+      const uint32_t i = border[b];
+      nx[i] = border_sum[b].x, ny[i] = border_sum[b].y, nz[i] = border_sum[b].z;
     }
     // Unit normals; zero when the length is zero.  Two plain loops so the
     // compiler vectorises them: the products with 1/len are computed for
@@ -150,11 +169,10 @@ void displaced_points(const TopologyRef& t, const float* p, const float* per_hal
     }
     for (uint32_t i = 0; i < n; ++i) {
       const double d = static_cast<double>(q[e0 + i]) * delta;
-      const float* m = mid(t.edge_half[e0 + i]);
       float* v = out + 3 * size_t{e0 + i};
-      v[0] = static_cast<float>(m[0] + d * nx[i]);
-      v[1] = static_cast<float>(m[1] + d * ny[i]);
-      v[2] = static_cast<float>(m[2] + d * nz[i]);
+      v[0] = static_cast<float>(mx[i] + d * nx[i]);
+      v[1] = static_cast<float>(my[i] + d * ny[i]);
+      v[2] = static_cast<float>(mz[i] + d * nz[i]);
     }
   }
 }
