@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <cstdlib>
 
 #include "butterfly_terms.h"
 
@@ -62,7 +63,12 @@ inline void add_cross(D3& n, const D3& a, const D3& b) {
 
 }  // namespace
 
-void stencil_points(const TopologyRef& t, const float* p, uint32_t fb, uint32_t fe, float* odd, float* per_half) {
+// The kernels are written once and instantiated twice (see the end of the
+// file): for the baseline instruction set and, on x86, for AVX2.
+#define DBSS_KERNEL [[gnu::always_inline]] inline
+
+DBSS_KERNEL void stencil_points_impl(const TopologyRef& t, const float* p, uint32_t fb, uint32_t fe, float* odd,
+                                     float* per_half) {
   // Edges in order through edge_half: no test per half-edge whether it
   // opens an edge (a branch the processor mispredicts often).
   const uint32_t end = first_edge_of_face(t, fe);
@@ -92,8 +98,8 @@ void stencil_points(const TopologyRef& t, const float* p, uint32_t fb, uint32_t 
   }
 }
 
-void displaced_points(const TopologyRef& t, const float* p, const float* per_half, const int32_t* q, float step,
-                      uint32_t fb, uint32_t fe, float* out) {
+DBSS_KERNEL void displaced_points_impl(const TopologyRef& t, const float* p, const float* per_half, const int32_t* q,
+                                       float step, uint32_t fb, uint32_t fe, float* out) {
   const double delta = step;
   const auto pos = [&](uint32_t v) { return p + 3 * size_t{v}; };
   const auto mid = [&](uint32_t x) { return per_half + 3 * size_t{x}; };  // odd vertex of half-edge x
@@ -175,6 +181,49 @@ void displaced_points(const TopologyRef& t, const float* p, const float* per_hal
       v[2] = static_cast<float>(mz[i] + d * nz[i]);
     }
   }
+}
+
+// Each lane of every vector instruction is the IEEE operation the scalar
+// code names (no FMA: the build has -ffp-contract=off, and AVX2 alone does
+// not enable FMA instructions), so both instantiations give the same bits;
+// tests run both (DBSS_BASELINE_KERNELS=1 forces the baseline).
+#if defined(__x86_64__) && defined(__GNUC__)
+#define DBSS_HAVE_AVX2_KERNELS 1
+[[gnu::target("avx2")]] void stencil_points_avx2(const TopologyRef& t, const float* p, uint32_t fb, uint32_t fe,
+                                                 float* odd, float* per_half) {
+  stencil_points_impl(t, p, fb, fe, odd, per_half);
+}
+[[gnu::target("avx2")]] void displaced_points_avx2(const TopologyRef& t, const float* p, const float* per_half,
+                                                   const int32_t* q, float step, uint32_t fb, uint32_t fe,
+                                                   float* out) {
+  displaced_points_impl(t, p, per_half, q, step, fb, fe, out);
+}
+#endif
+
+namespace {
+bool use_avx2() {
+#ifdef DBSS_HAVE_AVX2_KERNELS
+  static const bool cpu = __builtin_cpu_supports("avx2");
+  return cpu && !std::getenv("DBSS_BASELINE_KERNELS");
+#else
+  return false;
+#endif
+}
+}  // namespace
+
+void stencil_points(const TopologyRef& t, const float* p, uint32_t fb, uint32_t fe, float* odd, float* per_half) {
+#ifdef DBSS_HAVE_AVX2_KERNELS
+  if (use_avx2()) return stencil_points_avx2(t, p, fb, fe, odd, per_half);
+#endif
+  stencil_points_impl(t, p, fb, fe, odd, per_half);
+}
+
+void displaced_points(const TopologyRef& t, const float* p, const float* per_half, const int32_t* q, float step,
+                      uint32_t fb, uint32_t fe, float* out) {
+#ifdef DBSS_HAVE_AVX2_KERNELS
+  if (use_avx2()) return displaced_points_avx2(t, p, per_half, q, step, fb, fe, out);
+#endif
+  displaced_points_impl(t, p, per_half, q, step, fb, fe, out);
 }
 
 }  // namespace dbss::detail
