@@ -43,6 +43,17 @@ class Buffer {
     }
     size_ = n;
   }
+  // The storage as n uninitialised U (n * sizeof(U) must fit the capacity):
+  // lets one large array serve as scratch before it receives its own
+  // contents.  The T values end; call resize_for_overwrite (or reuse_as<T>)
+  // before using the buffer as T again.
+  template <class U>
+  U* reuse_as(size_t n) noexcept {
+    static_assert(std::is_trivially_copyable_v<U> && alignof(U) <= alignof(std::max_align_t));
+    return ::new (static_cast<void*>(data_)) U[n];  // trivial U: no initialisation, no cookie
+  }
+  size_t capacity_bytes() const noexcept { return capacity_ * sizeof(T); }
+
   T* data() noexcept { return data_; }
   const T* data() const noexcept { return data_; }
   size_t size() const noexcept { return size_; }

@@ -89,25 +89,27 @@ void Refiner::step(std::span<const int32_t> q, float step, unsigned threads) {
   const float* p = positions_.data();
   float* out = next_positions_.data();
   float* out_odd = out + 3 * size_t{evens};
+  // The next level's triangles need 12 entries per face, the stencil points
+  // kept per half-edge 9 floats per face: until pass 3 writes the
+  // triangles, their (fresh) array holds the points, which saves the
+  // memory and the page faults of a separate scratch array.
+  triangles_.resize_for_overwrite(12 * size_t{t.face_count});
   // Pass 1: every odd vertex at its stencil point (normals need all of
   // them); straight into the output when nothing moves, else per half-edge.
-  float* per_half = nullptr;
-  if (!q.empty()) {
-    stencil_points_.resize_for_overwrite(9 * size_t{t.face_count});
-    per_half = stencil_points_.data();
-  }
+  float* per_half = q.empty() ? nullptr : triangles_.reuse_as<float>(9 * size_t{t.face_count});
   parallel_ranges(t.face_count, threads, [&](uint32_t fb, uint32_t fe) {
     stencil_points(t, p, fb, fe, per_half ? nullptr : out_odd, per_half);
     const size_t vb = size_t{evens} * fb / t.face_count, ve = size_t{evens} * fe / t.face_count;
     std::memcpy(out + 3 * vb, p + 3 * vb, sizeof(float) * 3 * (ve - vb));
   });
-  // Pass 2: normals from the undisplaced level, the displacements, and the
-  // next level's triangles.
-  triangles_.resize_for_overwrite(12 * size_t{t.face_count});
-  parallel_ranges(t.face_count, threads, [&](uint32_t fb, uint32_t fe) {
-    if (!q.empty()) displaced_points(t, p, per_half, q.data(), step, fb, fe, out_odd);
-    refine_triangle_range(t, fb, fe, triangles_.data());
-  });
+  // Pass 2: normals from the undisplaced level, and the displacements.
+  if (per_half)
+    parallel_ranges(t.face_count, threads, [&](uint32_t fb, uint32_t fe) {
+      displaced_points(t, p, per_half, q.data(), step, fb, fe, out_odd);
+    });
+  // Pass 3: the next level's triangles, over the stencil points.
+  uint32_t* tri = triangles_.reuse_as<uint32_t>(12 * size_t{t.face_count});
+  parallel_ranges(t.face_count, threads, [&](uint32_t fb, uint32_t fe) { refine_triangle_range(t, fb, fe, tri); });
   positions_.swap(next_positions_);
   ++level_;
 }

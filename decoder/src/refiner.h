@@ -50,7 +50,7 @@ class Refiner {
   Buffer<uint32_t> base_across_;
   uint32_t level_ = 0;
   Topology parent_, spare_;  // levels L-1 and (scratch for) L
-  Buffer<float> positions_, next_positions_, stencil_points_;
+  Buffer<float> positions_, next_positions_;
   Buffer<uint32_t> triangles_;
 };
 
