@@ -69,8 +69,8 @@ inline void add_cross(D3& n, const D3& a, const D3& b) {
 
 DBSS_KERNEL void stencil_points_impl(const TopologyRef& t, const float* p, uint32_t fb, uint32_t fe, float* odd,
                                      float* per_half) {
-  // Edges in order through edge_half: no test per half-edge whether it
-  // opens an edge (a branch the processor mispredicts often).
+  // Edges in order through edge_half, so there is no per-half-edge test
+  // (and branch) whether it opens an edge.
   const uint32_t end = first_edge_of_face(t, fe);
   for (uint32_t e = first_edge_of_face(t, fb); e < end; ++e) {
     const uint32_t h = t.edge_half[e], o = t.twin[h];
