@@ -1,7 +1,6 @@
 // Child connectivity from the parent's regular 1-to-4 split, without any
 // search: every child entry is a function of a few parent entries, so the
 // work splits over contiguous face ranges (spec/decoding.md section 4).
-#include "parallel.h"
 #include "topology_ref.h"
 
 namespace dbss {
@@ -42,8 +41,9 @@ inline uint32_t open_bits(const uint32_t* twin, uint32_t f) {
 // parent edge it opened.
 inline uint32_t child_edge_base(uint32_t f, uint32_t parent_edges_before) { return 3 * f + 2 * parent_edges_before; }
 
-// Child edge of slot s of face g (a face that opens parent edge `e` at its
-// half-edge 3g+j).
+// Child edge of slot s in the block of parent face g = g_half / 3, where
+// parent half-edge g_half opens its edge (so edge_of[g_half] counts the
+// edges opened before it).
 inline uint32_t child_edge_in(const TopologyRef& p, uint32_t g_half, uint32_t s) {
   const uint32_t g = g_half / 3, j = g_half % 3;
   const uint32_t open = open_bits(p.twin, g);
