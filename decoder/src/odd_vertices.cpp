@@ -71,8 +71,17 @@ DBSS_KERNEL void stencil_points_impl(const TopologyRef& t, const float* p, uint3
                                      float* per_half) {
   // Edges in order through edge_half, so there is no per-half-edge test
   // (and branch) whether it opens an edge.
+  constexpr uint32_t kAhead = 32;
   const uint32_t end = first_edge_of_face(t, fe);
   for (uint32_t e = first_edge_of_face(t, fb); e < end; ++e) {
+    // The twin triangle is the far-away access (its across entries, and
+    // the point written there): request it some edges ahead.  A hint only:
+    // nothing is read through it.
+    if (e + kAhead < end) {
+      const uint32_t ahead = t.twin[t.edge_half[e + kAhead]];
+      if (ahead != kNoHalfEdge && t.across) __builtin_prefetch(t.across + 3 * (ahead / 3));
+      if (ahead != kNoHalfEdge && per_half) __builtin_prefetch(per_half + 3 * size_t{ahead}, 1);
+    }
     const uint32_t h = t.edge_half[e], o = t.twin[h];
     float point[3];
     if (o != kNoHalfEdge && regular_end(t, t.tri[h]) && regular_end(t, t.tri[next_half(h)])) {
@@ -118,6 +127,12 @@ DBSS_KERNEL void displaced_points_impl(const TopologyRef& t, const float* p, con
   const uint32_t end = first_edge_of_face(t, fe);
   for (uint32_t e0 = first_edge_of_face(t, fb); e0 < end; e0 += kBatch) {
     const uint32_t n = std::min(kBatch, end - e0);
+    // The twin triangle's points are the one far-away read (the stencil
+    // pass wrote them long ago): request the next batch's now.
+    for (uint32_t e = e0 + kBatch; e < std::min(end, e0 + 2 * kBatch); ++e) {
+      const uint32_t o = t.twin[t.edge_half[e]];
+      if (o != kNoHalfEdge) __builtin_prefetch(mid(3 * (o / 3)));
+    }
     uint32_t borders = 0;
     for (uint32_t i = 0; i < n; ++i) {
       const uint32_t h = t.edge_half[e0 + i], o = t.twin[h];
