@@ -42,13 +42,13 @@ inline uint32_t open_bits(const uint32_t* twin, uint32_t f) {
 inline uint32_t child_edge_base(uint32_t f, uint32_t parent_edges_before) { return 3 * f + 2 * parent_edges_before; }
 
 // Child edge of slot s in the block of parent face g = g_half / 3, where
-// parent half-edge g_half opens its edge (so edge_of[g_half] counts the
-// edges opened before it).
-inline uint32_t child_edge_in(const TopologyRef& p, uint32_t g_half, uint32_t s) {
+// parent half-edge g_half opens parent edge `edge` (the number of edges
+// opened before it, read on the calling face's own half-edge of that edge).
+inline uint32_t child_edge_in(const TopologyRef& p, uint32_t g_half, uint32_t edge, uint32_t s) {
   const uint32_t g = g_half / 3, j = g_half % 3;
   const uint32_t open = open_bits(p.twin, g);
   constexpr uint8_t kBits[8] = {0, 1, 1, 2, 1, 2, 2, 3};  // popcount of 3 bits (no popcnt on baseline x86-64)
-  const uint32_t before = p.edge_of[g_half] - kBits[open & ((1u << j) - 1)];
+  const uint32_t before = edge - kBits[open & ((1u << j) - 1)];
   return child_edge_base(g, before) + kRank.r[open][s];
 }
 
@@ -99,11 +99,11 @@ void refine_faces(const TopologyRef& p, uint32_t fb, uint32_t fe, const Topology
         if (c.edge_half) c.edge_half[ce] = x;
         ++ce;
       } else if (s % 3 == 0) {
-        const uint32_t g = ptw[s / 3];  // first half of 3f+k pairs with the second half of g
-        c.edge_of[x] = child_edge_in(p, g, 3 * ((g % 3 + 1) % 3) + 2);
+        const uint32_t k = s / 3, g = ptw[k];  // first half of 3f+k pairs with the second half of g
+        c.edge_of[x] = child_edge_in(p, g, p.edge_of[3 * f + k], 3 * ((g % 3 + 1) % 3) + 2);
       } else {
-        const uint32_t g = ptw[(s / 3 + 2) % 3];  // second half pairs with g's first half
-        c.edge_of[x] = child_edge_in(p, g, 3 * (g % 3));
+        const uint32_t k = (s / 3 + 2) % 3, g = ptw[k];  // second half of 3f+k pairs with g's first half
+        c.edge_of[x] = child_edge_in(p, g, p.edge_of[3 * f + k], 3 * (g % 3));
       }
     }
     for (uint32_t j = 0; j < 3; ++j) c.edge_of[cf + 9 + j] = c.edge_of[cf + 3 * ((j + 1) % 3) + 1];
