@@ -52,7 +52,11 @@ class Buffer {
     static_assert(std::is_trivially_copyable_v<U> && alignof(U) <= alignof(std::max_align_t));
     return ::new (static_cast<void*>(data_)) U[n];  // trivial U: no initialisation, no cookie
   }
-  size_t capacity_bytes() const noexcept { return capacity_ * sizeof(T); }
+  void release() noexcept {
+    free_large(data_);
+    data_ = nullptr;
+    size_ = capacity_ = 0;
+  }
 
   T* data() noexcept { return data_; }
   const T* data() const noexcept { return data_; }

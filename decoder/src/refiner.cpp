@@ -16,7 +16,19 @@ TopologyRef Refiner::Topology::ref() const {
   return r;
 }
 
+void Refiner::Topology::release() {
+  for (Buffer<uint32_t>* b : {&tri, &twin, &edge_of, &edge_half, &vertex_start, &across}) b->release();
+  valence.release();
+  boundary.release();
+}
+
 void Refiner::reset(const LevelTopology& base, std::span<const float> base_positions) {
+  // Back to level 0 keeps nothing of the finer levels.
+  parent_.release();
+  spare_.release();
+  positions_.release();
+  next_positions_.release();
+  triangles_.release();
   base_ = &base;
   level_ = 0;
   const TopologyRef b = ref_of(base);
@@ -112,6 +124,10 @@ void Refiner::step(std::span<const int32_t> q, float step, unsigned threads) {
   parallel_ranges(t.face_count, threads, [&](uint32_t fb, uint32_t fe) { refine_triangle_range(t, fb, fe, tri); });
   positions_.swap(next_positions_);
   ++level_;
+  // Level L-1's positions and L-2's topology are not needed any more, and
+  // too small to be reused for a finer level: free them now.
+  next_positions_.release();
+  spare_.release();
 }
 
 }  // namespace dbss::detail

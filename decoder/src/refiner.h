@@ -41,6 +41,7 @@ class Refiner {
     Buffer<uint16_t> valence;
     Buffer<uint8_t> boundary;
     TopologyRef ref() const;
+    void release();
   };
   TopologyRef base_topology() const;
   // The connectivity of the current level (built from `parent_`), as a ref.
