@@ -1,5 +1,6 @@
 // Internal: the progressive decoder's level-to-level refinement, on buffers
-// that are reused from level to level and never zeroed.
+// that are never zeroed (every entry is written before it is read) and that
+// hold only what the current level needs.
 //
 // At level L it holds the positions and triangles of level L and the full
 // connectivity of level L-1 only: the connectivity of level L is built when
