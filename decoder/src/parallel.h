@@ -9,8 +9,9 @@
 
 namespace dbss::detail {
 
-// Ranges smaller than this are not worth a thread's start-up (~20 µs).
-inline constexpr uint32_t kMinPerThread = 32768;
+// Ranges smaller than this are not worth a thread's start-up (~20 µs; 8192
+// faces are a few hundred µs of work).
+inline constexpr uint32_t kMinPerThread = 8192;
 
 // Runs fn(begin, end) over [0, n) in at most `threads` contiguous pieces of
 // at least `min_piece` elements; fn must not throw.  Callers write each
