@@ -41,17 +41,6 @@ inline uint32_t open_bits(const uint32_t* twin, uint32_t f) {
 // parent edge it opened.
 inline uint32_t child_edge_base(uint32_t f, uint32_t parent_edges_before) { return 3 * f + 2 * parent_edges_before; }
 
-// Child edge of slot s in the block of parent face g = g_half / 3, where
-// parent half-edge g_half opens parent edge `edge` (the number of edges
-// opened before it, read on the calling face's own half-edge of that edge).
-inline uint32_t child_edge_in(const TopologyRef& p, uint32_t g_half, uint32_t edge, uint32_t s) {
-  const uint32_t g = g_half / 3, j = g_half % 3;
-  const uint32_t open = open_bits(p.twin, g);
-  constexpr uint8_t kBits[8] = {0, 1, 1, 2, 1, 2, 2, 3};  // popcount of 3 bits (no popcnt on baseline x86-64)
-  const uint32_t before = edge - kBits[open & ((1u << j) - 1)];
-  return child_edge_base(g, before) + kRank.r[open][s];
-}
-
 }  // namespace
 
 void refine_triangle_range(const TopologyRef& p, uint32_t fb, uint32_t fe, uint32_t* out) {
@@ -88,23 +77,32 @@ void refine_faces(const TopologyRef& p, uint32_t fb, uint32_t fe, const Topology
       c.twin[cf + 3 * k + 2] = pp == kNoHalfEdge ? kNoHalfEdge : 12 * (pp / 3) + 3 * (pp % 3) + 0;
       c.twin[cf + 9 + k] = cf + 3 * ((k + 1) % 3) + 1;
     }
-    // Edge numbers: opening slots count up from the face's base; a split
-    // half that does not open takes the edge of its twin's slot in the
-    // earlier face, found from that face's own base and open bits.
-    uint32_t ce = child_edge_base(f, pe);
-    for (uint32_t s = 0; s < 9; ++s) {
-      const uint32_t x = cf + s;
-      if (slot_opens(open, s)) {
-        c.edge_of[x] = ce;
-        if (c.edge_half) c.edge_half[ce] = x;
-        ++ce;
-      } else if (s % 3 == 0) {
-        const uint32_t k = s / 3, g = ptw[k];  // first half of 3f+k pairs with the second half of g
-        c.edge_of[x] = child_edge_in(p, g, p.edge_of[3 * f + k], 3 * ((g % 3 + 1) % 3) + 2);
-      } else {
-        const uint32_t k = (s / 3 + 2) % 3, g = ptw[k];  // second half of 3f+k pairs with g's first half
-        c.edge_of[x] = child_edge_in(p, g, p.edge_of[3 * f + k], 3 * (g % 3));
+    // Edge numbers: opening slots count up from the face's base (kRank); the
+    // two halves of a parent edge that f does not open take the edges of
+    // their twins' slots in the earlier face g, found from g's own base and
+    // open bits.
+    const uint32_t base = child_edge_base(f, pe);
+    const uint8_t* rank = kRank.r[open];
+    const auto number = [&](uint32_t s, uint32_t e) {
+      c.edge_of[cf + s] = e;
+      if (c.edge_half) c.edge_half[e] = cf + s;
+    };
+    for (uint32_t k = 0; k < 3; ++k) {
+      const uint32_t first = 3 * k, second = 3 * ((k + 1) % 3) + 2;  // the halves of parent 3f+k
+      number(3 * k + 1, base + rank[3 * k + 1]);                       // inner edge m_k -> m_{k+2}
+      if (open >> k & 1) {
+        number(first, base + rank[first]);
+        number(second, base + rank[second]);
+        continue;
       }
+      const uint32_t g = ptw[k], gf = g / 3, j = g % 3;
+      const uint32_t gopen = open_bits(p.twin, gf);
+      constexpr uint8_t kBits[8] = {0, 1, 1, 2, 1, 2, 2, 3};  // popcount of 3 bits (no popcnt on baseline x86-64)
+      // p.edge_of[3f+k] is also g's edge: g's face opened that many edges,
+      // minus those g's earlier half-edges opened, before g's block.
+      const uint32_t gbase = child_edge_base(gf, p.edge_of[3 * f + k] - kBits[gopen & ((1u << j) - 1)]);
+      c.edge_of[cf + first] = gbase + kRank.r[gopen][3 * ((j + 1) % 3) + 2];  // g's second half
+      c.edge_of[cf + second] = gbase + kRank.r[gopen][3 * j];                 // g's first half
     }
     for (uint32_t j = 0; j < 3; ++j) c.edge_of[cf + 9 + j] = c.edge_of[cf + 3 * ((j + 1) % 3) + 1];
     if (c.across) {
