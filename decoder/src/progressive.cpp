@@ -1,12 +1,11 @@
 #include "dbss/decoder/progressive.h"
 
 #include <new>
-#include <optional>
 #include <string>
 #include <thread>
 
 #include "dbss/decoder/control_mesh.h"
-#include "dbss/decoder/subdivision.h"
+#include "refiner.h"
 
 namespace dbss {
 
@@ -20,14 +19,10 @@ struct ProgressiveDecoder::State {
   LevelTopology base_topology;
   std::vector<float> base_positions;
 
-  // The current level: positions and triangles.  Its full topology is built
-  // only when a finer level is asked for; until then the (4x smaller)
-  // topology of the level below is kept instead.
-  uint32_t level = 0;
+  // The current level (positions, triangles, and the topology of the level
+  // below it), in buffers reused from level to level.
   bool have_current = false;
-  std::optional<LevelTopology> parent;  // topology of level - 1 (level >= 1)
-  std::vector<uint32_t> triangles;
-  std::vector<float> positions;
+  detail::Refiner current;
 
   // keep_levels: every level decoded so far.
   std::vector<std::vector<float>> kept_positions;
@@ -66,27 +61,27 @@ struct ProgressiveDecoder::State {
   }
 
   void reset_to_base() {
-    level = 0;
-    parent.reset();
-    triangles = base_topology.triangles;
-    positions = base_positions;
+    current.reset(base_topology, base_positions);
     have_current = true;
   }
 
-  void step() {
-    const uint32_t next = level + 1;
-    const format::Level& data = reader.level(next);
-    LevelTopology current = level == 0 ? base_topology : refine_topology(*parent);
-    const LevelPlan plan = plan_level(current);
-    std::vector<float> out;
-    subdivide_geometry(plan, positions, data.q, data.step, out, threads);
-    positions = std::move(out);
-    refine_triangles(current, triangles);
-    parent = std::move(current);
-    level = next;
+  Status step() {
+    const format::Level& data = reader.level(current.level() + 1);
+    // The reader sized q from the header's counts, which the control mesh
+    // matched, and bounded them by its limits; both checked again here
+    // because the kernels index q without bounds and count in 32 bits.
+    const detail::Refiner::Counts c = current.counts();
+    if (!data.q.empty() && data.q.size() != c.edges)
+      return fail(ErrorCode::bad_mesh, "level " + std::to_string(current.level() + 1) + " has " +
+                                           std::to_string(data.q.size()) + " displacements for " +
+                                           std::to_string(c.edges) + " odd vertices");
+    if (c.vertices + c.edges >= kNoHalfEdge || 12 * c.faces >= kNoHalfEdge)
+      return fail(ErrorCode::limit_exceeded, "level " + std::to_string(current.level() + 1) + " is too large");
+    current.step(data.q, data.step, threads);
+    return {};
   }
 
-  MeshView view() const { return {level, positions, triangles}; }
+  MeshView view() const { return {current.level(), current.positions(), current.triangles()}; }
 };
 
 ProgressiveDecoder::ProgressiveDecoder(const DecoderOptions& options) : s_(std::make_unique<State>(options)) {}
@@ -124,16 +119,17 @@ Result<MeshView> ProgressiveDecoder::decode(uint32_t level) {
     }
     if (s.options.keep_levels && level < s.kept_positions.size())
       return MeshView{level, s.kept_positions[level], s.kept_triangles[level]};
-    if (!s.have_current || level < s.level) s.reset_to_base();
-    while (s.level < level) {
-      s.step();
+    if (!s.have_current || level < s.current.level()) s.reset_to_base();
+    while (s.current.level() < level) {
+      if (Status st = s.step(); !st.ok()) return st;
       if (s.options.keep_levels) {
         if (s.kept_positions.empty()) {
           s.kept_positions.push_back(s.base_positions);
           s.kept_triangles.push_back(s.base_topology.triangles);
         }
-        s.kept_positions.push_back(s.positions);
-        s.kept_triangles.push_back(s.triangles);
+        const MeshView v = s.view();
+        s.kept_positions.emplace_back(v.positions.begin(), v.positions.end());
+        s.kept_triangles.emplace_back(v.triangles.begin(), v.triangles.end());
       }
     }
     return s.view();

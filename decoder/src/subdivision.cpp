@@ -1,8 +1,8 @@
 #include "dbss/decoder/subdivision.h"
 
-#include <algorithm>
 #include <cstring>
-#include <thread>
+
+#include "parallel.h"
 
 namespace dbss {
 
@@ -14,30 +14,7 @@ LevelPlan plan_level(const LevelTopology& t) {
   return plan;
 }
 
-namespace {
-
-// Runs fn(begin, end) over [0, n) in `threads` contiguous pieces.  Each
-// output element is written by exactly one piece, so the split cannot change
-// any value.
-template <class F>
-void parallel_ranges(uint32_t n, unsigned threads, F&& fn) {
-  constexpr uint32_t kMinPerThread = 32768;
-  threads = std::max(1u, std::min<unsigned>(threads, n / kMinPerThread));
-  if (threads <= 1) {
-    fn(0u, n);
-    return;
-  }
-  std::vector<std::thread> pool;
-  const uint32_t chunk = (n + threads - 1) / threads;
-  for (unsigned i = 1; i < threads; ++i) {
-    const uint32_t b = std::min(n, i * chunk), e = std::min(n, b + chunk);
-    pool.emplace_back([&fn, b, e] { fn(b, e); });
-  }
-  fn(0u, std::min(n, chunk));
-  for (auto& t : pool) t.join();
-}
-
-}  // namespace
+using detail::parallel_ranges;
 
 void subdivide_geometry(const LevelPlan& plan, std::span<const float> positions, std::span<const int32_t> q,
                         float step, std::vector<float>& out, unsigned threads) {

@@ -1,0 +1,28 @@
+// Internal: the geometry of one refinement step evaluated straight from the
+// parent's half-edge tables, one contiguous range of parent faces per call.
+// Same arithmetic, term for term, as Stencils + apply_stencils and
+// odd_normals (spec/decoding.md sections 5-7), without materialising the
+// stencil, ring or normal tables: each level is evaluated once, so a table
+// would cost more to write than it saves.
+#pragma once
+
+#include <cstdint>
+
+#include "topology_ref.h"
+
+namespace dbss::detail {
+
+// Computes the stencil point of every edge opened by faces [fb, fe) of `t`
+// (p: the level's positions) and writes it either to odd[3e..3e+2] (e its
+// edge number), or, when `odd` is null, to per_half[3x..3x+2] for both
+// half-edges x of the edge: the normal pass then finds the ring of an odd
+// vertex in the two triangles of its edge, without chasing edge numbers.
+void stencil_points(const TopologyRef& t, const float* p, uint32_t fb, uint32_t fe, float* odd, float* per_half);
+
+// For the same edges: the normal at the odd vertex from the undisplaced
+// child level (evens p, odds per half-edge as stencil_points wrote them),
+// and out[3e..] = odd vertex moved by q[e] * step along it.
+void displaced_points(const TopologyRef& t, const float* p, const float* per_half, const int32_t* q, float step,
+                      uint32_t fb, uint32_t fe, float* out);
+
+}  // namespace dbss::detail

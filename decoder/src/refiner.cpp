@@ -1,0 +1,133 @@
+#include "refiner.h"
+
+#include <cstring>
+
+#include "odd_vertices.h"
+#include "parallel.h"
+
+namespace dbss::detail {
+
+TopologyRef Refiner::Topology::ref() const {
+  TopologyRef r;
+  r.vertex_count = vertex_count, r.face_count = face_count, r.edge_count = edge_count;
+  r.tri = tri.data(), r.twin = twin.data(), r.edge_of = edge_of.data(), r.edge_half = edge_half.data();
+  r.vertex_start = vertex_start.data(), r.valence = valence.data(), r.boundary = boundary.data();
+  r.across = across.data();
+  return r;
+}
+
+void Refiner::Topology::release() {
+  for (Buffer<uint32_t>* b : {&tri, &twin, &edge_of, &edge_half, &vertex_start, &across}) b->release();
+  valence.release();
+  boundary.release();
+}
+
+void Refiner::reset(const LevelTopology& base, std::span<const float> base_positions) {
+  // Back to level 0 keeps nothing of the finer levels.
+  parent_.release();
+  spare_.release();
+  positions_.release();
+  next_positions_.release();
+  triangles_.release();
+  base_ = &base;
+  level_ = 0;
+  const TopologyRef b = ref_of(base);
+  base_across_.resize_for_overwrite(3 * size_t{b.face_count});
+  for (uint32_t x = 0; x < 3 * b.face_count; ++x) base_across_[x] = across_of(b, x);
+  positions_.resize_for_overwrite(base_positions.size());
+  std::memcpy(positions_.data(), base_positions.data(), base_positions.size_bytes());
+  triangles_.resize_for_overwrite(base.triangles.size());
+  std::memcpy(triangles_.data(), base.triangles.data(), base.triangles.size() * sizeof(uint32_t));
+}
+
+Refiner::Counts Refiner::counts() const noexcept {
+  const TopologyRef p = level_ <= 1 ? ref_of(*base_) : parent_.ref();
+  if (level_ == 0) return {p.vertex_count, p.edge_count, p.face_count};
+  return {uint64_t{p.vertex_count} + p.edge_count, 2 * uint64_t{p.edge_count} + 3 * uint64_t{p.face_count},
+          4 * uint64_t{p.face_count}};
+}
+
+TopologyRef Refiner::base_topology() const {
+  TopologyRef t = ref_of(*base_);
+  t.across = base_across_.data();
+  return t;
+}
+
+TopologyRef Refiner::current_topology(unsigned threads) {
+  if (level_ == 0) return base_topology();
+  // Level L's triangles are already in triangles_: they move into the
+  // topology instead of being split out of L-1 again.
+  const TopologyRef p = level_ == 1 ? base_topology() : parent_.ref();
+  Topology& c = spare_;
+  c.vertex_count = p.vertex_count + p.edge_count;
+  c.face_count = 4 * p.face_count;
+  c.edge_count = 2 * p.edge_count + 3 * p.face_count;
+  const size_t halves = 3 * size_t{c.face_count};
+  c.tri.swap(triangles_);
+  c.twin.resize_for_overwrite(halves);
+  c.edge_of.resize_for_overwrite(halves);
+  c.across.resize_for_overwrite(halves);
+  c.edge_half.resize_for_overwrite(c.edge_count);
+  c.vertex_start.resize_for_overwrite(c.vertex_count);
+  c.valence.resize_for_overwrite(c.vertex_count);
+  c.boundary.resize_for_overwrite(c.vertex_count);
+  const TopologyOut out{nullptr,          c.twin.data(),    c.edge_of.data(),  c.edge_half.data(),
+                        c.vertex_start.data(), c.valence.data(), c.boundary.data(), c.across.data()};
+  parallel_ranges(p.face_count, threads, [&](uint32_t fb, uint32_t fe) {
+    refine_faces(p, fb, fe, out);
+    // Even vertices: the same share of the parent's vertices.
+    const uint64_t n = p.vertex_count;
+    refine_vertices(p, static_cast<uint32_t>(n * fb / p.face_count), static_cast<uint32_t>(n * fe / p.face_count),
+                    out);
+  });
+  parent_.tri.swap(c.tri);  // parent_ becomes level L; its old buffers are reused next time
+  parent_.twin.swap(c.twin);
+  parent_.edge_of.swap(c.edge_of);
+  parent_.across.swap(c.across);
+  parent_.edge_half.swap(c.edge_half);
+  parent_.vertex_start.swap(c.vertex_start);
+  parent_.valence.swap(c.valence);
+  parent_.boundary.swap(c.boundary);
+  parent_.vertex_count = c.vertex_count;
+  parent_.face_count = c.face_count;
+  parent_.edge_count = c.edge_count;
+  return parent_.ref();
+}
+
+void Refiner::step(std::span<const int32_t> q, float step, unsigned threads) {
+  const TopologyRef t = current_topology(threads);
+  const uint32_t evens = t.vertex_count, odds = t.edge_count;
+  next_positions_.resize_for_overwrite(3 * (size_t{evens} + odds));
+  const float* p = positions_.data();
+  float* out = next_positions_.data();
+  float* out_odd = out + 3 * size_t{evens};
+  // The next level's triangles need 12 entries per face, the stencil points
+  // kept per half-edge 9 floats per face: until pass 3 writes the
+  // triangles, their (fresh) array holds the points, which saves the
+  // memory and the page faults of a separate scratch array.
+  triangles_.resize_for_overwrite(12 * size_t{t.face_count});
+  // Pass 1: every odd vertex at its stencil point (normals need all of
+  // them); straight into the output when nothing moves, else per half-edge.
+  float* per_half = q.empty() ? nullptr : triangles_.reuse_as<float>(9 * size_t{t.face_count});
+  parallel_ranges(t.face_count, threads, [&](uint32_t fb, uint32_t fe) {
+    stencil_points(t, p, fb, fe, per_half ? nullptr : out_odd, per_half);
+    const size_t vb = size_t{evens} * fb / t.face_count, ve = size_t{evens} * fe / t.face_count;
+    std::memcpy(out + 3 * vb, p + 3 * vb, sizeof(float) * 3 * (ve - vb));
+  });
+  // Pass 2: normals from the undisplaced level, and the displacements.
+  if (per_half)
+    parallel_ranges(t.face_count, threads, [&](uint32_t fb, uint32_t fe) {
+      displaced_points(t, p, per_half, q.data(), step, fb, fe, out_odd);
+    });
+  // Pass 3: the next level's triangles, over the stencil points.
+  uint32_t* tri = triangles_.reuse_as<uint32_t>(12 * size_t{t.face_count});
+  parallel_ranges(t.face_count, threads, [&](uint32_t fb, uint32_t fe) { refine_triangle_range(t, fb, fe, tri); });
+  positions_.swap(next_positions_);
+  ++level_;
+  // Level L-1's positions and L-2's topology are not needed any more, and
+  // too small to be reused for a finer level: free them now.
+  next_positions_.release();
+  spare_.release();
+}
+
+}  // namespace dbss::detail

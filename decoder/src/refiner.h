@@ -1,0 +1,59 @@
+// Internal: the progressive decoder's level-to-level refinement, on buffers
+// that are never zeroed (every entry is written before it is read) and that
+// hold only what the current level needs.
+//
+// At level L it holds the positions and triangles of level L and the full
+// connectivity of level L-1 only: the connectivity of level L is built when
+// level L+1 is asked for (from L-1's, by the regular split), and the finest
+// level never needs its own.
+#pragma once
+
+#include <cstdint>
+#include <span>
+
+#include "buffer.h"
+#include "topology_ref.h"
+
+namespace dbss::detail {
+
+class Refiner {
+ public:
+  // Starts over at level 0.  `base` must outlive the Refiner's use.
+  void reset(const LevelTopology& base, std::span<const float> base_positions);
+  // Level L -> L+1 with the odd vertices' integers q (E_L of them, or none
+  // for plain subdivision) and the level's step.  `threads` >= 1; the result
+  // is the same for any value.
+  void step(std::span<const int32_t> q, float step, unsigned threads);
+
+  uint32_t level() const noexcept { return level_; }
+  // Counts of the current level (E is the number of odd vertices the next
+  // step creates), in 64 bits so callers can check the next level fits.
+  struct Counts {
+    uint64_t vertices, edges, faces;
+  };
+  Counts counts() const noexcept;
+  std::span<const float> positions() const noexcept { return positions_.span(); }
+  std::span<const uint32_t> triangles() const noexcept { return triangles_.span(); }
+
+ private:
+  struct Topology {
+    uint32_t vertex_count = 0, face_count = 0, edge_count = 0;
+    Buffer<uint32_t> tri, twin, edge_of, edge_half, vertex_start, across;
+    Buffer<uint16_t> valence;
+    Buffer<uint8_t> boundary;
+    TopologyRef ref() const;
+    void release();
+  };
+  TopologyRef base_topology() const;
+  // The connectivity of the current level (built from `parent_`), as a ref.
+  TopologyRef current_topology(unsigned threads);
+
+  const LevelTopology* base_ = nullptr;
+  Buffer<uint32_t> base_across_;
+  uint32_t level_ = 0;
+  Topology parent_, spare_;  // levels L-1 and (scratch for) L
+  Buffer<float> positions_, next_positions_;
+  Buffer<uint32_t> triangles_;
+};
+
+}  // namespace dbss::detail
