@@ -107,7 +107,11 @@ DBSS_KERNEL void stencil_points_impl(const TopologyRef& t, const float* p, uint3
   }
 }
 
-DBSS_KERNEL void displaced_points_impl(const TopologyRef& t, const float* p, const float* per_half, const int32_t* q,
+// q_of(e, point, normal) gives odd vertex e's integer: the decoder reads it
+// from the file, the encoder chooses it from the undisplaced point and the
+// normal this very loop computed (so both place the vertex identically).
+template <class QOf>
+DBSS_KERNEL void displaced_points_impl(const TopologyRef& t, const float* p, const float* per_half, QOf&& q_of,
                                        float step, uint32_t fb, uint32_t fe, float* out) {
   const double delta = step;
   const auto pos = [&](uint32_t v) { return p + 3 * size_t{v}; };
@@ -189,7 +193,7 @@ DBSS_KERNEL void displaced_points_impl(const TopologyRef& t, const float* p, con
       nz[i] = std::bit_cast<double>(std::bit_cast<uint64_t>(nz[i]) & keep);
     }
     for (uint32_t i = 0; i < n; ++i) {
-      const double d = static_cast<double>(q[e0 + i]) * delta;
+      const double d = static_cast<double>(q_of(e0 + i, mx[i], my[i], mz[i], nx[i], ny[i], nz[i])) * delta;
       float* v = out + 3 * size_t{e0 + i};
       v[0] = static_cast<float>(mx[i] + d * nx[i]);
       v[1] = static_cast<float>(my[i] + d * ny[i]);
@@ -197,6 +201,12 @@ DBSS_KERNEL void displaced_points_impl(const TopologyRef& t, const float* p, con
     }
   }
 }
+
+// The decoder's q_of: the file's integers.
+struct FromFile {
+  const int32_t* q;
+  int32_t operator()(uint32_t e, double, double, double, double, double, double) const { return q[e]; }
+};
 
 // Each lane of every vector instruction is the IEEE operation the scalar
 // code names (no FMA: the build has -ffp-contract=off, and AVX2 alone does
@@ -211,7 +221,7 @@ DBSS_KERNEL void displaced_points_impl(const TopologyRef& t, const float* p, con
 [[gnu::target("avx2")]] void displaced_points_avx2(const TopologyRef& t, const float* p, const float* per_half,
                                                    const int32_t* q, float step, uint32_t fb, uint32_t fe,
                                                    float* out) {
-  displaced_points_impl(t, p, per_half, q, step, fb, fe, out);
+  displaced_points_impl(t, p, per_half, FromFile{q}, step, fb, fe, out);
 }
 #endif
 
@@ -238,7 +248,18 @@ void displaced_points(const TopologyRef& t, const float* p, const float* per_hal
 #ifdef DBSS_HAVE_AVX2_KERNELS
   if (use_avx2()) return displaced_points_avx2(t, p, per_half, q, step, fb, fe, out);
 #endif
-  displaced_points_impl(t, p, per_half, q, step, fb, fe, out);
+  displaced_points_impl(t, p, per_half, FromFile{q}, step, fb, fe, out);
+}
+
+void displaced_points_chosen(const TopologyRef& t, const float* p, const float* per_half, const OddChooser& choose,
+                             int32_t* q, float step, uint32_t fb, uint32_t fe, float* out) {
+  const auto chosen = [&](uint32_t e, double mx, double my, double mz, double nx, double ny, double nz) {
+    const uint32_t h = t.edge_half[e];
+    const double point[3] = {mx, my, mz}, normal[3] = {nx, ny, nz};
+    q[e] = choose(e, point, normal, p + 3 * size_t{t.tri[h]}, p + 3 * size_t{t.tri[next_half(h)]});
+    return q[e];
+  };
+  displaced_points_impl(t, p, per_half, chosen, step, fb, fe, out);
 }
 
 }  // namespace dbss::detail

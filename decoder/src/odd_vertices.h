@@ -8,6 +8,7 @@
 
 #include <cstdint>
 
+#include "dbss/decoder/level_refiner.h"
 #include "topology_ref.h"
 
 namespace dbss::detail {
@@ -24,5 +25,11 @@ void stencil_points(const TopologyRef& t, const float* p, uint32_t fb, uint32_t 
 // and out[3e..] = odd vertex moved by q[e] * step along it.
 void displaced_points(const TopologyRef& t, const float* p, const float* per_half, const int32_t* q, float step,
                       uint32_t fb, uint32_t fe, float* out);
+
+// The same, with each q[e] chosen by `choose` from the undisplaced point and
+// its unit normal (as this pass computes them) and written to q[e]: the
+// encoder's closed loop, through the decoder's own arithmetic.
+void displaced_points_chosen(const TopologyRef& t, const float* p, const float* per_half, const OddChooser& choose,
+                             int32_t* q, float step, uint32_t fb, uint32_t fe, float* out);
 
 }  // namespace dbss::detail

@@ -95,6 +95,14 @@ TopologyRef Refiner::current_topology(unsigned threads) {
 }
 
 void Refiner::step(std::span<const int32_t> q, float step, unsigned threads) {
+  step_impl(q.empty() ? nullptr : q.data(), nullptr, nullptr, step, threads);
+}
+
+void Refiner::step_chosen(const OddChooser& choose, int32_t* q, float step, unsigned threads) {
+  step_impl(nullptr, &choose, q, step, threads);
+}
+
+void Refiner::step_impl(const int32_t* q, const OddChooser* choose, int32_t* chosen, float step, unsigned threads) {
   const TopologyRef t = current_topology(threads);
   const uint32_t evens = t.vertex_count, odds = t.edge_count;
   next_positions_.resize_for_overwrite(3 * (size_t{evens} + odds));
@@ -108,7 +116,8 @@ void Refiner::step(std::span<const int32_t> q, float step, unsigned threads) {
   triangles_.resize_for_overwrite(12 * size_t{t.face_count});
   // Pass 1: every odd vertex at its stencil point (normals need all of
   // them); straight into the output when nothing moves, else per half-edge.
-  float* per_half = q.empty() ? nullptr : triangles_.reuse_as<float>(9 * size_t{t.face_count});
+  const bool moves = q || choose;
+  float* per_half = moves ? triangles_.reuse_as<float>(9 * size_t{t.face_count}) : nullptr;
   parallel_ranges(t.face_count, threads, [&](uint32_t fb, uint32_t fe) {
     stencil_points(t, p, fb, fe, per_half ? nullptr : out_odd, per_half);
     const size_t vb = size_t{evens} * fb / t.face_count, ve = size_t{evens} * fe / t.face_count;
@@ -117,7 +126,8 @@ void Refiner::step(std::span<const int32_t> q, float step, unsigned threads) {
   // Pass 2: normals from the undisplaced level, and the displacements.
   if (per_half)
     parallel_ranges(t.face_count, threads, [&](uint32_t fb, uint32_t fe) {
-      displaced_points(t, p, per_half, q.data(), step, fb, fe, out_odd);
+      if (choose) displaced_points_chosen(t, p, per_half, *choose, chosen, step, fb, fe, out_odd);
+      else displaced_points(t, p, per_half, q, step, fb, fe, out_odd);
     });
   // Pass 3: the next level's triangles, over the stencil points.
   uint32_t* tri = triangles_.reuse_as<uint32_t>(12 * size_t{t.face_count});

@@ -12,6 +12,7 @@
 #include <span>
 
 #include "buffer.h"
+#include "dbss/decoder/level_refiner.h"
 #include "topology_ref.h"
 
 namespace dbss::detail {
@@ -24,6 +25,8 @@ class Refiner {
   // for plain subdivision) and the level's step.  `threads` >= 1; the result
   // is the same for any value.
   void step(std::span<const int32_t> q, float step, unsigned threads);
+  // The same step with each q chosen by `choose` and written to q[0..E_L).
+  void step_chosen(const OddChooser& choose, int32_t* q, float step, unsigned threads);
 
   uint32_t level() const noexcept { return level_; }
   // Counts of the current level (E is the number of odd vertices the next
@@ -44,6 +47,7 @@ class Refiner {
     TopologyRef ref() const;
     void release();
   };
+  void step_impl(const int32_t* q, const OddChooser* choose, int32_t* chosen, float step, unsigned threads);
   TopologyRef base_topology() const;
   // The connectivity of the current level (built from `parent_`), as a ref.
   TopologyRef current_topology(unsigned threads);

@@ -2,10 +2,13 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
+#include <cstring>
 #include <set>
 
 #include "../shapes.h"
+#include "dbss/decoder/level_refiner.h"
 #include "dbss/decoder/subdivision.h"
 #include "dbss/format/container.h"
 
@@ -296,6 +299,50 @@ TEST_CASE("all-zero displacements give exactly plain butterfly subdivision") {
       for (size_t i = 0; i < a.size(); ++i) REQUIRE(a[i] == b[i]);
       plain = std::move(a), zero = std::move(b);
       topo = dbss::refine_topology(topo);
+    }
+  }
+}
+
+TEST_CASE("LevelRefiner (the encoder's closed loop) places vertices as the reference evaluation does, any thread count") {
+  for (const dbss::TriangleMesh& m : {dbss::test::jitter(dbss::test::torus(40, 30), 0.02f),
+                                      dbss::test::jitter(dbss::test::planar_grid(30, 20), 0.1f)}) {
+    auto t = dbss::build_topology(static_cast<uint32_t>(m.vertex_count()), m.triangles);
+    REQUIRE(t.ok());
+    for (unsigned threads : {1u, 2u, 3u}) {
+      auto r = dbss::LevelRefiner::create(m);
+      REQUIRE(r.ok());
+      dbss::LevelTopology topo = t.value();
+      std::vector<float> ref = m.positions;
+      for (int level = 1; level <= 3; ++level) {
+        const dbss::LevelPlan plan = dbss::plan_level(topo);
+        // The chooser sees the reference's undisplaced point and its edge's
+        // ends, and picks a q that depends on them.
+        std::vector<float> plain;
+        dbss::subdivide_geometry(plan, ref, {}, 0.0f, plain);
+        std::vector<int32_t> q;
+        std::atomic<bool> points_agree{true}, ends_agree{true};  // written from the step's threads
+        const dbss::OddChooser choose = [&](uint32_t e, const double p[3], const double n[3], const float* a,
+                                            const float* b) {
+          const float* want = &plain[3 * (size_t{plan.vertex_count} + e)];
+          if (!(p[0] == want[0] && p[1] == want[1] && p[2] == want[2])) points_agree = false;
+          const uint32_t h = topo.edge_half[e];
+          if (a != r.value().positions().data() + 3 * size_t{topo.triangles[h]} ||
+              b != r.value().positions().data() + 3 * size_t{topo.triangles[dbss::next_half(h)]})
+            ends_agree = false;
+          (void)n;
+          return static_cast<int32_t>(e % 7) - 3;
+        };
+        r.value().refine(choose, 0.01f, q, threads);
+        CHECK(points_agree.load());
+        CHECK(ends_agree.load());
+        std::vector<float> next;
+        dbss::subdivide_geometry(plan, ref, q, 0.01f, next);
+        REQUIRE(r.value().positions().size() == next.size());
+        CHECK(std::memcmp(r.value().positions().data(), next.data(), next.size() * 4) == 0);
+        topo = dbss::refine_topology(topo);
+        CHECK(std::equal(topo.triangles.begin(), topo.triangles.end(), r.value().triangles().begin()));
+        ref = std::move(next);
+      }
     }
   }
 }

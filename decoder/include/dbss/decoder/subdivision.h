@@ -1,5 +1,11 @@
 // One subdivision step: topology pass once (LevelPlan), geometry pass as
 // flat loops (even copy, stencils, normals, displacements).
+//
+// This is the reference evaluation, shaped like spec/decoding.md: explicit
+// stencil and ring tables.  The progressive decoder and the encoder's
+// closed loop (LevelRefiner) run faster kernels that evaluate the same
+// terms in the same order straight from the half-edge tables; tests check
+// the two agree bit for bit.
 #pragma once
 
 #include <cstdint>

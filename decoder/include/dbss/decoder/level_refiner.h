@@ -1,0 +1,55 @@
+// The decoder's level-to-level refinement as a library object, for the
+// encoder's closed loop: each step runs the very kernels the progressive
+// decoder runs, but lets the caller choose every odd vertex's integer from
+// the undisplaced point and the unit normal the step computed.  So the
+// encoder places each vertex exactly where a decoder will (one
+// implementation of subdivision, never two).
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <span>
+#include <vector>
+
+#include "dbss/decoder/mesh.h"
+#include "dbss/format/status.h"
+
+namespace dbss {
+
+// Chooses odd vertex `odd`'s integer q: `point` is its undisplaced stencil
+// point and `normal` its unit normal (zero when degenerate), both in
+// binary64 as the decoder holds them; u and w are its edge's two ends in
+// the level being refined (3 floats each).  Called from several threads at
+// once for different odd vertices, so it must be safe to call concurrently;
+// the vertex then moves by q * step along the normal.
+using OddChooser = std::function<int32_t(uint32_t odd, const double point[3], const double normal[3],
+                                         const float* u, const float* w)>;
+
+class LevelRefiner {
+ public:
+  // Fails with bad_mesh as build_topology() does.
+  static Result<LevelRefiner> create(const TriangleMesh& control);
+  ~LevelRefiner();
+  LevelRefiner(LevelRefiner&&) noexcept;
+  LevelRefiner& operator=(LevelRefiner&&) noexcept;
+
+  // One level finer: every odd vertex's q from `choose` (written to `q`,
+  // resized to the odd count), moved by q * step.  `threads` >= 1; the
+  // result is the same for any value.
+  void refine(const OddChooser& choose, float step, std::vector<int32_t>& q, unsigned threads = 1);
+
+  uint32_t level() const noexcept;
+  // The current level; valid until the next refine().
+  std::span<const float> positions() const noexcept;
+  std::span<const uint32_t> triangles() const noexcept;
+  // Odd vertices the next refine() creates (the current level's edges).
+  uint64_t next_odd_count() const noexcept;
+
+ private:
+  struct State;
+  explicit LevelRefiner(std::unique_ptr<State> s);
+  std::unique_ptr<State> s_;
+};
+
+}  // namespace dbss
