@@ -1,7 +1,5 @@
 #include "compare.h"
 
-#include <unistd.h>
-
 #include <cstdio>
 #include <string>
 
@@ -9,6 +7,7 @@
 #include "dbss/encoder/point_input.h"
 #include "encode_options.h"
 #include "json.h"
+#include "progress.h"
 
 namespace dbss::tools {
 
@@ -94,8 +93,11 @@ int run_compare(const std::vector<std::string_view>& args) {
     std::fprintf(stderr, "dbss compare: %s\n", s.message().c_str());
     return 1;
   }
-  if (::isatty(2) == 1) std::fprintf(stderr, "dbss compare: encoding and measuring %s...\n", input.c_str());
+  Progress progress("dbss compare");
+  options.on_progress = [&](const std::string& what) { progress.show(what); };
+  co.on_progress = options.on_progress;
   auto r = compare_representations(points.value(), options, co);
+  progress.done();
   if (!r.ok()) {
     std::fprintf(stderr, "dbss compare: %s: %s\n", input.c_str(), r.status().to_string().c_str());
     return r.status().code() == ErrorCode::internal ? 2 : 1;

@@ -7,6 +7,7 @@
 #include "dbss/decoder/progressive.h"
 #include "dbss/encoder/mesh_io.h"
 #include "dbss/format/reader.h"
+#include "progress.h"
 
 namespace dbss::tools {
 
@@ -83,15 +84,18 @@ int run_decode(const std::vector<std::string_view>& args) {
     return 1;
   }
   const uint32_t want = level < 0 ? static_cast<uint32_t>(ready) : static_cast<uint32_t>(level);
+  Progress progress("dbss decode");
   auto mesh = d.decode(want);
   if (!mesh.ok()) {
     std::fprintf(stderr, "dbss decode: %s: %s\n", input.c_str(), mesh.status().to_string().c_str());
     return 1;
   }
+  progress.show("writing " + output);
   if (Status s = write_mesh(output, mesh.value().copy()); !s.ok()) {
     std::fprintf(stderr, "dbss decode: %s\n", s.message().c_str());
     return 1;
   }
+  progress.done();
   std::printf("%s: level %u, %zu vertices, %zu triangles -> %s\n", input.c_str(), want, mesh.value().vertex_count(),
               mesh.value().triangle_count(), output.c_str());
   return 0;

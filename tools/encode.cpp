@@ -1,7 +1,6 @@
 #include "encode.h"
 #include "encode_options.h"
-
-#include <unistd.h>
+#include "progress.h"
 
 #include <charconv>
 #include <cmath>
@@ -21,31 +20,6 @@
 namespace dbss::tools {
 
 namespace {
-
-// Progress on stderr, only on a terminal and only once the work has taken
-// over a second; the line is cleared when done.
-class Progress {
- public:
-  Progress() : start_(std::chrono::steady_clock::now()), tty_(::isatty(2) == 1) {}
-  ~Progress() {
-    if (shown_) std::fputs("\r\033[K", stderr);
-  }
-  void show(const std::string& what) {
-    if (!tty_ || std::chrono::steady_clock::now() - start_ < std::chrono::seconds(1)) return;
-    std::fprintf(stderr, "\r\033[Kdbss encode: %s...", what.c_str());
-    std::fflush(stderr);
-    shown_ = true;
-  }
-  void done() {
-    if (shown_) std::fputs("\r\033[K", stderr);
-    shown_ = false;
-    tty_ = false;
-  }
-
- private:
-  std::chrono::steady_clock::time_point start_;
-  bool tty_, shown_ = false;
-};
 
 constexpr const char* kHelpHead =
     "usage: dbss encode INPUT -o OUT.dbss [options]\n"
@@ -104,7 +78,7 @@ int run_encode(const std::vector<std::string_view>& args) {
   if (output.empty()) return usage("no output file (-o OUT.dbss)");
 
   using Clock = std::chrono::steady_clock;
-  Progress progress;
+  Progress progress("dbss encode");
   const auto t0 = Clock::now();
   auto points = read_points(input);
   if (!points.ok()) {

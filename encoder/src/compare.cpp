@@ -25,6 +25,7 @@ Result<Comparison> compare_representations(const PointCloud& points, const Encod
   const float step = levels ? e.levels.levels[0].step : 0.0f;
   std::vector<DssLevel> dss;
   if (levels) {
+    if (o.on_progress) o.on_progress("full-vertex DSS baseline");
     auto d = encode_dss_baseline(e.control, index, {levels, step, eo.effort});
     if (!d.ok()) return d.status();
     dss = std::move(d).value();
@@ -32,6 +33,7 @@ Result<Comparison> compare_representations(const PointCloud& points, const Encod
   const uint64_t base = prefix_bytes(e, 0);
   uint64_t dss_all = base;
   for (uint32_t l = 0; l <= levels; ++l) {
+    if (o.on_progress) o.on_progress("measuring level " + std::to_string(l) + " of " + std::to_string(levels));
     CompareRow r;
     r.level = l;
     const TriangleMesh mesh{e.levels.positions[l], e.levels.triangles[l]};

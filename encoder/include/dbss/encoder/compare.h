@@ -5,6 +5,8 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
+#include <string>
 #include <vector>
 
 #include "dbss/encoder/encode.h"
@@ -15,6 +17,7 @@ namespace dbss {
 struct CompareOptions {
   std::vector<int> draco_bits = {11, 14};  // Draco position quantization of the level meshes
   bool errors = true;                      // compute the distance figures (the slow part)
+  std::function<void(const std::string&)> on_progress;  // called as each level is measured; may be empty
 };
 
 // Errors relative to the bounding-box diagonal.
