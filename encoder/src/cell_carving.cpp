@@ -2,7 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <thread>
+#include <future>
+#include <system_error>
 
 #include "dbss/encoder/point_index.h"
 
@@ -252,11 +253,11 @@ int choose_grid(const PointCloud& pc, int max_grid) {
   // leaks when carving gets inside the surface.  A leak grows with every
   // finer grid and shows in the data alone: the enclosed volume collapses
   // (under half the previous grid's), the solid's Euler characteristic drops
-  // by more than one handle at once, or the carved solid needs more than a
+  // by more than two (two handles at once), or the carved solid needs more than a
   // few cells filled to stay manifold (gaps punched through thin walls).  A
   // true change of topology at a finer grid, a false handle opening or two
-  // parts separating, moves the Euler characteristic by one or two and needs
-  // no such repairs.  A leak can begin a step before it shows, so the result
+  // parts separating, moves the Euler characteristic by one or two (up for
+  // parts, down for handles) and needs no such repairs.  A leak can begin a step before it shows, so the result
   // is the grid two steps before the first leaking one (or the finest grid
   // tried when none leaks).
   std::array<double, 3> lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
@@ -285,11 +286,16 @@ int choose_grid(const PointCloud& pc, int max_grid) {
   std::vector<Trial> tried{trial(grids[0])};
   for (size_t i = 1; i < grids.size(); ++i) {
     if (i + 1 < grids.size() && tried.size() == i) {
-      Trial second;
-      std::thread worker([&] { second = trial(grids[i + 1]); });
+      // A future, not a bare thread: an exception here (out of memory)
+      // waits for the other trial instead of terminating; a refused thread
+      // just means trying the grid here.
+      std::future<Trial> second;
+      try {
+        second = std::async(std::launch::async, trial, grids[i + 1]);
+      } catch (const std::system_error&) {
+      }
       tried.push_back(trial(grids[i]));
-      worker.join();
-      tried.push_back(second);
+      tried.push_back(second.valid() ? second.get() : trial(grids[i + 1]));
     } else if (tried.size() == i) {
       tried.push_back(trial(grids[i]));
     }
