@@ -34,8 +34,11 @@ void Refiner::reset(const LevelTopology& base, std::span<const float> base_posit
   const TopologyRef b = ref_of(base);
   base_across_.resize_for_overwrite(3 * size_t{b.face_count});
   for (uint32_t x = 0; x < 3 * b.face_count; ++x) base_across_[x] = across_of(b, x);
-  positions_.resize_for_overwrite(base_positions.size());
+  // One float of slack: the kernels load a point as four floats.
+  positions_.resize_for_overwrite(base_positions.size() + 1);
   std::memcpy(positions_.data(), base_positions.data(), base_positions.size_bytes());
+  positions_[base_positions.size()] = 0;
+  position_floats_ = base_positions.size();
   triangles_.resize_for_overwrite(base.triangles.size());
   std::memcpy(triangles_.data(), base.triangles.data(), base.triangles.size() * sizeof(uint32_t));
 }
@@ -105,7 +108,9 @@ void Refiner::step_chosen(const OddChooser& choose, int32_t* q, float step, unsi
 void Refiner::step_impl(const int32_t* q, const OddChooser* choose, int32_t* chosen, float step, unsigned threads) {
   const TopologyRef t = current_topology(threads);
   const uint32_t evens = t.vertex_count, odds = t.edge_count;
-  next_positions_.resize_for_overwrite(3 * (size_t{evens} + odds));
+  const size_t floats = 3 * (size_t{evens} + odds);
+  next_positions_.resize_for_overwrite(floats + 1);  // slack for the kernels' four-float loads
+  next_positions_[floats] = 0;
   const float* p = positions_.data();
   float* out = next_positions_.data();
   float* out_odd = out + 3 * size_t{evens};
@@ -117,7 +122,8 @@ void Refiner::step_impl(const int32_t* q, const OddChooser* choose, int32_t* cho
   // Pass 1: every odd vertex at its stencil point (normals need all of
   // them); straight into the output when nothing moves, else per half-edge.
   const bool moves = q || choose;
-  float* per_half = moves ? triangles_.reuse_as<float>(9 * size_t{t.face_count}) : nullptr;
+  float* per_half = moves ? triangles_.reuse_as<float>(9 * size_t{t.face_count} + 1) : nullptr;
+  if (per_half) per_half[9 * size_t{t.face_count}] = 0;  // slack (inside the 12 per face)
   parallel_ranges(t.face_count, threads, [&](uint32_t fb, uint32_t fe) {
     stencil_points(t, p, fb, fe, per_half ? nullptr : out_odd, per_half);
     const size_t vb = size_t{evens} * fb / t.face_count, ve = size_t{evens} * fe / t.face_count;
@@ -133,6 +139,7 @@ void Refiner::step_impl(const int32_t* q, const OddChooser* choose, int32_t* cho
   uint32_t* tri = triangles_.reuse_as<uint32_t>(12 * size_t{t.face_count});
   parallel_ranges(t.face_count, threads, [&](uint32_t fb, uint32_t fe) { refine_triangle_range(t, fb, fe, tri); });
   positions_.swap(next_positions_);
+  position_floats_ = floats;
   ++level_;
   // Level L-1's positions and L-2's topology are not needed any more, and
   // too small to be reused for a finer level: free them now.

@@ -35,7 +35,7 @@ class Refiner {
     uint64_t vertices, edges, faces;
   };
   Counts counts() const noexcept;
-  std::span<const float> positions() const noexcept { return positions_.span(); }
+  std::span<const float> positions() const noexcept { return {positions_.data(), position_floats_}; }
   std::span<const uint32_t> triangles() const noexcept { return triangles_.span(); }
 
  private:
@@ -56,7 +56,8 @@ class Refiner {
   Buffer<uint32_t> base_across_;
   uint32_t level_ = 0;
   Topology parent_, spare_;  // levels L-1 and (scratch for) L
-  Buffer<float> positions_, next_positions_;
+  Buffer<float> positions_, next_positions_;  // one float longer than the level's positions
+  size_t position_floats_ = 0;
   Buffer<uint32_t> triangles_;
 };
 
