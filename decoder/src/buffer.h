@@ -10,6 +10,7 @@
 #include <span>
 #include <type_traits>
 #include <utility>
+#include <vector>
 
 namespace dbss::detail {
 
@@ -19,6 +20,50 @@ namespace dbss::detail {
 // kernel's per-fault cost was a third of a large level's decode time).
 void* allocate_large(size_t bytes);  // throws std::bad_alloc
 void free_large(void* p) noexcept;
+
+// Storage a decoder keeps from one stream for the next
+// (ProgressiveDecoder::reset): decoding a file of the same shape again
+// finds its arrays already mapped, so the kernel neither faults them in nor
+// clears them.  A block serves a request of at least half its size only, so
+// that the small arrays of coarse levels do not take the large blocks the
+// finest level needs.
+class BlockPool {
+ public:
+  BlockPool() = default;
+  BlockPool(const BlockPool&) = delete;
+  BlockPool& operator=(const BlockPool&) = delete;
+  ~BlockPool() { clear(); }
+
+  void put(void* p, size_t bytes) {
+    if (!p) return;
+    try {
+      blocks_.push_back({p, bytes});
+    } catch (...) {
+      free_large(p);  // no room to remember it: give it back instead
+    }
+  }
+  // The smallest block of `bytes` to 2 * `bytes`, removed from the pool; or
+  // {nullptr, 0}.
+  std::pair<void*, size_t> take(size_t bytes) noexcept {
+    size_t best = blocks_.size();
+    for (size_t i = 0; i < blocks_.size(); ++i)
+      if (blocks_[i].second >= bytes && blocks_[i].second / 2 <= bytes &&
+          (best == blocks_.size() || blocks_[i].second < blocks_[best].second))
+        best = i;
+    if (best == blocks_.size()) return {nullptr, 0};
+    const auto b = blocks_[best];
+    blocks_[best] = blocks_.back();
+    blocks_.pop_back();
+    return b;
+  }
+  void clear() noexcept {
+    for (const auto& b : blocks_) free_large(b.first);
+    blocks_.clear();
+  }
+
+ private:
+  std::vector<std::pair<void*, size_t>> blocks_;
+};
 
 template <class T>
 class Buffer {
@@ -32,16 +77,28 @@ class Buffer {
   Buffer& operator=(const Buffer&) = delete;
   ~Buffer() { free_large(data_); }
 
-  void resize_for_overwrite(size_t n) {
+  // With a pool, a block kept there is used when one fits.
+  void resize_for_overwrite(size_t n, BlockPool* pool = nullptr) {
     if (n > capacity_) {
       if (n > SIZE_MAX / sizeof(T)) throw std::bad_alloc();
       free_large(data_);  // free first: peak memory stays at the new size
       data_ = nullptr;
       capacity_ = 0;
-      data_ = static_cast<T*>(allocate_large(n * sizeof(T)));  // uninitialised: no zeroing
-      capacity_ = n;
+      if (const auto kept = pool ? pool->take(n * sizeof(T)) : std::pair<void*, size_t>{}; kept.first) {
+        data_ = static_cast<T*>(kept.first);
+        capacity_ = kept.second / sizeof(T);
+      } else {
+        data_ = static_cast<T*>(allocate_large(n * sizeof(T)));  // uninitialised: no zeroing
+        capacity_ = n;
+      }
     }
     size_ = n;
+  }
+  // Hands the storage to `pool` (and empties the buffer).
+  void release_to(BlockPool& pool) noexcept {
+    pool.put(data_, capacity_ * sizeof(T));
+    data_ = nullptr;
+    size_ = capacity_ = 0;
   }
   // The storage as n uninitialised U (n * sizeof(U) must fit the capacity):
   // lets one large array serve as scratch before it receives its own

@@ -94,6 +94,19 @@ Status ProgressiveDecoder::feed(std::span<const uint8_t> bytes) {
   return s_->reader.feed(bytes);
 }
 
+void ProgressiveDecoder::reset() {
+  State& s = *s_;
+  s.current.recycle();
+  s.reader = format::Reader(s.options.limits);
+  s.status = {};
+  s.have_base = false;
+  s.base_topology = {};
+  s.base_positions = {};
+  s.have_current = false;
+  s.kept_positions = {};
+  s.kept_triangles = {};
+}
+
 Status ProgressiveDecoder::finish() {
   if (!s_->status.ok()) return s_->status;
   return s_->reader.finish();

@@ -22,6 +22,24 @@ void Refiner::Topology::release() {
   boundary.release();
 }
 
+void Refiner::Topology::release_to(BlockPool& pool) {
+  for (Buffer<uint32_t>* b : {&tri, &twin, &edge_of, &edge_half, &vertex_start, &across}) b->release_to(pool);
+  valence.release_to(pool);
+  boundary.release_to(pool);
+}
+
+void Refiner::recycle() {
+  pool_.clear();  // what the last stream did not reuse
+  parent_.release_to(pool_);
+  spare_.release_to(pool_);
+  for (Buffer<float>* b : {&positions_, &next_positions_}) b->release_to(pool_);
+  triangles_.release_to(pool_);
+  base_across_.release_to(pool_);
+  position_floats_ = 0;
+  base_ = nullptr;
+  level_ = 0;
+}
+
 void Refiner::reset(const LevelTopology& base, std::span<const float> base_positions) {
   // Back to level 0 keeps nothing of the finer levels.
   parent_.release();
@@ -32,14 +50,14 @@ void Refiner::reset(const LevelTopology& base, std::span<const float> base_posit
   base_ = &base;
   level_ = 0;
   const TopologyRef b = ref_of(base);
-  base_across_.resize_for_overwrite(3 * size_t{b.face_count});
+  base_across_.resize_for_overwrite(3 * size_t{b.face_count}, &pool_);
   for (uint32_t x = 0; x < 3 * b.face_count; ++x) base_across_[x] = across_of(b, x);
   // One float of slack: the kernels load a point as four floats.
-  positions_.resize_for_overwrite(base_positions.size() + 1);
+  positions_.resize_for_overwrite(base_positions.size() + 1, &pool_);
   std::memcpy(positions_.data(), base_positions.data(), base_positions.size_bytes());
   positions_[base_positions.size()] = 0;
   position_floats_ = base_positions.size();
-  triangles_.resize_for_overwrite(base.triangles.size());
+  triangles_.resize_for_overwrite(base.triangles.size(), &pool_);
   std::memcpy(triangles_.data(), base.triangles.data(), base.triangles.size() * sizeof(uint32_t));
 }
 
@@ -67,13 +85,13 @@ TopologyRef Refiner::current_topology(unsigned threads) {
   c.edge_count = 2 * p.edge_count + 3 * p.face_count;
   const size_t halves = 3 * size_t{c.face_count};
   c.tri.swap(triangles_);
-  c.twin.resize_for_overwrite(halves);
-  c.edge_of.resize_for_overwrite(halves);
-  c.across.resize_for_overwrite(halves);
-  c.edge_half.resize_for_overwrite(c.edge_count);
-  c.vertex_start.resize_for_overwrite(c.vertex_count);
-  c.valence.resize_for_overwrite(c.vertex_count);
-  c.boundary.resize_for_overwrite(c.vertex_count);
+  c.twin.resize_for_overwrite(halves, &pool_);
+  c.edge_of.resize_for_overwrite(halves, &pool_);
+  c.across.resize_for_overwrite(halves, &pool_);
+  c.edge_half.resize_for_overwrite(c.edge_count, &pool_);
+  c.vertex_start.resize_for_overwrite(c.vertex_count, &pool_);
+  c.valence.resize_for_overwrite(c.vertex_count, &pool_);
+  c.boundary.resize_for_overwrite(c.vertex_count, &pool_);
   const TopologyOut out{nullptr,          c.twin.data(),    c.edge_of.data(),  c.edge_half.data(),
                         c.vertex_start.data(), c.valence.data(), c.boundary.data(), c.across.data()};
   parallel_ranges(p.face_count, threads, [&](uint32_t fb, uint32_t fe) {
@@ -109,7 +127,7 @@ void Refiner::step_impl(const int32_t* q, const OddChooser* choose, int32_t* cho
   const TopologyRef t = current_topology(threads);
   const uint32_t evens = t.vertex_count, odds = t.edge_count;
   const size_t floats = 3 * (size_t{evens} + odds);
-  next_positions_.resize_for_overwrite(floats + 1);  // slack for the kernels' four-float loads
+  next_positions_.resize_for_overwrite(floats + 1, &pool_);  // slack for the kernels' four-float loads
   next_positions_[floats] = 0;
   const float* p = positions_.data();
   float* out = next_positions_.data();
@@ -118,7 +136,7 @@ void Refiner::step_impl(const int32_t* q, const OddChooser* choose, int32_t* cho
   // kept per half-edge 9 floats per face: until pass 3 writes the
   // triangles, their (fresh) array holds the points, which saves the
   // memory and the page faults of a separate scratch array.
-  triangles_.resize_for_overwrite(12 * size_t{t.face_count});
+  triangles_.resize_for_overwrite(12 * size_t{t.face_count}, &pool_);
   // Pass 1: every odd vertex at its stencil point (normals need all of
   // them); straight into the output when nothing moves, else per half-edge.
   const bool moves = q || choose;

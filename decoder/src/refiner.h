@@ -21,6 +21,9 @@ class Refiner {
  public:
   // Starts over at level 0.  `base` must outlive the Refiner's use.
   void reset(const LevelTopology& base, std::span<const float> base_positions);
+  // Forgets everything but keeps the arrays' storage for the next stream
+  // (reset must follow before any other call).
+  void recycle();
   // Level L -> L+1 with the odd vertices' integers q (E_L of them, or none
   // for plain subdivision) and the level's step.  `threads` >= 1; the result
   // is the same for any value.
@@ -46,12 +49,14 @@ class Refiner {
     Buffer<uint8_t> boundary;
     TopologyRef ref() const;
     void release();
+    void release_to(BlockPool& pool);
   };
   void step_impl(const int32_t* q, const OddChooser* choose, int32_t* chosen, float step, unsigned threads);
   TopologyRef base_topology() const;
   // The connectivity of the current level (built from `parent_`), as a ref.
   TopologyRef current_topology(unsigned threads);
 
+  BlockPool pool_;  // the last stream's storage, after recycle()
   const LevelTopology* base_ = nullptr;
   Buffer<uint32_t> base_across_;
   uint32_t level_ = 0;

@@ -138,3 +138,45 @@ TEST_CASE("progressive decoder equals the stencil-table path bit for bit on 1 to
     }
   }
 }
+
+TEST_CASE("reset: one decoder over several streams equals a fresh decoder for each") {
+  const auto big = test::build_file(test::jitter(test::torus(16, 9), 0.05f), 4, 40, 0.01f);
+  const auto small = test::build_file(test::jitter(test::bipyramid(7), 0.1f, 3), 5, 30, 0.02f);
+  const auto bordered = test::build_file(test::jitter(test::planar_grid(12, 9), 0.2f), 3, 50, 0.01f);
+  const auto fresh = [](const std::vector<uint8_t>& file, uint32_t level) {
+    auto m = decode_bytes(file, static_cast<int>(level));
+    REQUIRE(m.ok());
+    return m.value();
+  };
+  for (unsigned threads : {1u, 2u}) {
+    DecoderOptions o;
+    o.threads = threads;
+    ProgressiveDecoder d(o);
+    // Shapes that grow, shrink and grow again, so the kept storage is both
+    // too large and too small for the next stream.
+    for (const auto* file : {&big, &small, &bordered, &big, &big, &small}) {
+      const uint32_t finest = static_cast<uint32_t>(format::read_all(*file).levels_ready());
+      REQUIRE(d.feed(*file).ok());
+      REQUIRE(d.finish().ok());
+      for (uint32_t l : {finest, 1u, finest}) {
+        auto v = d.decode(l);
+        REQUIRE(v.ok());
+        INFO("threads " << threads << ", level " << l << " of " << finest);
+        CHECK(v.value().copy() == fresh(*file, l));
+      }
+      d.reset();
+      CHECK(d.ready_level() == -1);
+    }
+    // A stream that failed leaves nothing behind after reset.
+    auto broken = big;
+    broken[broken.size() / 2] ^= 0x40;
+    CHECK_FALSE(d.feed(broken).ok());
+    CHECK_FALSE(d.status().ok());
+    d.reset();
+    CHECK(d.status().ok());
+    REQUIRE(d.feed(small).ok());
+    auto v = d.decode(3);
+    REQUIRE(v.ok());
+    CHECK(v.value().copy() == fresh(small, 3));
+  }
+}

@@ -68,6 +68,14 @@ class ProgressiveDecoder {
   Result<MeshView> decode(uint32_t level);
   Result<MeshView> decode_finest() { return decode(ready_level() < 0 ? 0 : static_cast<uint32_t>(ready_level())); }
 
+  // Starts over for a new stream with the same options, as a new decoder
+  // would, errors included.  The storage of the last level decoded is kept
+  // for the new stream's levels (up to what that level used, and freed with
+  // the decoder or at the next reset if unused): decoding many files with
+  // one decoder skips most of the cost of fresh memory.  Spans from
+  // earlier decode() calls are invalid afterwards.
+  void reset();
+
  private:
   struct State;
   std::unique_ptr<State> s_;
