@@ -1,5 +1,7 @@
 #include "rules.h"
 
+#include <cstring>
+
 #include <cmath>
 #include <string>
 
@@ -83,16 +85,36 @@ Status unpack_displacements(std::span<const uint8_t> raw, DisplacementCoding cod
     return Status(ErrorCode::bad_field, "LEVL: payload size does not fit the odd-vertex count", at);
   q.resize(count);
   if (coding == DisplacementCoding::byte_planes) {
+    const auto z_of = [&](size_t i) {
+      return uint32_t{raw[i]} | (uint32_t{raw[count + i]} << 8) | (uint32_t{raw[2 * count + i]} << 16) |
+             (uint32_t{raw[3 * count + i]} << 24);
+    };
+    // One branch-free pass (it vectorises), the range checked once at the
+    // end; only a bad payload pays for finding its first bad value.
+    uint32_t worst = 0;
     for (size_t i = 0; i < count; ++i) {
-      const uint32_t z = uint32_t{raw[i]} | (uint32_t{raw[count + i]} << 8) | (uint32_t{raw[2 * count + i]} << 16) |
-                         (uint32_t{raw[3 * count + i]} << 24);
-      if (z > kMaxZ) return bad_value(i);
+      const uint32_t z = z_of(i);
+      worst = worst > z ? worst : z;
       q[i] = zigzag_decode(z);
     }
+    if (worst > kMaxZ)
+      for (size_t i = 0; i < count; ++i)
+        if (z_of(i) > kMaxZ) return bad_value(i);
     return {};
   }
   size_t p = 0;
   for (size_t i = 0; i < count; ++i) {
+    // Most displacements of fine levels are one byte: eight of them at once
+    // when the next eight bytes all lack the continuation bit (such values
+    // are canonical and in range, so no check can fail for them).
+    while (count - i >= 8 && raw.size() - p >= 8) {
+      uint64_t word;
+      std::memcpy(&word, raw.data() + p, 8);
+      if (word & 0x8080808080808080u) break;
+      for (size_t k = 0; k < 8; ++k) q[i + k] = zigzag_decode(raw[p + k]);
+      i += 8, p += 8;
+    }
+    if (i == count) break;
     uint32_t z = 0;
     for (int shift = 0;; shift += 7) {
       if (p >= raw.size())
