@@ -160,3 +160,58 @@ TEST_CASE("level payload rules: non-canonical varints, bad raw_size, two zstd fr
   REQUIRE(ok.complete());
   CHECK(ok.level(1).q[0] == kMaxAbsDisplacement);
 }
+
+TEST_CASE("long level payloads: runs of one-byte varints and a bad value far in, in both codings") {
+  // The paper's genus-1 counts: 150 odd vertices at level 1.
+  const FileContents c = test::sample_contents(50, 150, 100, 1);
+  constexpr uint32_t kCount = 150;
+  const auto file_of = [&](uint8_t coding_id, const std::vector<uint8_t>& raw) {
+    std::vector<uint8_t> d = {1, coding_id, 0, 0};
+    for (int i = 0; i < 4; ++i) d.push_back(static_cast<uint8_t>(kCount >> (8 * i)));
+    const float step = 0.25f;
+    uint32_t bits;
+    std::memcpy(&bits, &step, 4);
+    for (int i = 0; i < 4; ++i) d.push_back(static_cast<uint8_t>(bits >> (8 * i)));
+    for (int i = 0; i < 4; ++i) d.push_back(static_cast<uint8_t>(raw.size() >> (8 * i)));
+    std::vector<uint8_t> z(ZSTD_compressBound(raw.size()));
+    z.resize(ZSTD_compress(z.data(), z.size(), raw.data(), raw.size(), 1));
+    d.insert(d.end(), z.begin(), z.end());
+    return read_all(assemble(encode_header(c.header),
+                             std::vector<RawChunk>{{kCtrl, encode_control(ControlCodec::draco, c.control_mesh)}, {kLevl, d}}));
+  };
+  // One-byte values (zigzag: 2k -> k, 2k+1 -> -k-1), then a two-byte one last.
+  std::vector<uint8_t> raw;
+  std::vector<int32_t> want;
+  for (uint32_t i = 0; i + 1 < kCount; ++i) {
+    raw.push_back(static_cast<uint8_t>(i % 128));
+    want.push_back(i % 2 ? -static_cast<int32_t>(i % 128 / 2) - 1 : static_cast<int32_t>(i % 128 / 2));
+  }
+  raw.push_back(0x81), raw.push_back(0x01);  // z = 129: q = -65
+  want.push_back(-65);
+  {
+    const Reader r = file_of(1, raw);
+    REQUIRE(r.complete());
+    CHECK(r.level(1).q == want);
+  }
+  // A non-canonical varint at #20, after a run the fast path takes.
+  auto bad = std::vector<uint8_t>(raw.begin(), raw.begin() + 20);
+  bad.push_back(0x80), bad.push_back(0x00);
+  bad.insert(bad.end(), raw.begin() + 21, raw.end());
+  {
+    const Reader r = file_of(1, bad);
+    CHECK(r.status().code() == ErrorCode::bad_field);
+    CHECK_THAT(r.status().message(), Catch::Contains("#20 "));
+  }
+  // Byte planes: every value valid but #137, just past 2^24.
+  std::vector<uint8_t> planes(4 * kCount, 0);
+  for (uint32_t i = 0; i < kCount; ++i) planes[i] = static_cast<uint8_t>(i);
+  {
+    const Reader r = file_of(0, planes);
+    REQUIRE(r.complete());
+    CHECK(r.level(1).q[137] == -69);  // z = 137
+  }
+  planes[137] = 2, planes[3 * kCount + 137] = 2;  // z = 2^25 + 2
+  const Reader r = file_of(0, planes);
+  CHECK(r.status().code() == ErrorCode::bad_field);
+  CHECK_THAT(r.status().message(), Catch::Contains("#137 "));
+}
