@@ -11,6 +11,23 @@ using namespace dbss;
 using namespace dbss::format;
 
 namespace {
+// A LEVL chunk's data for level 1, by hand: `count` odd vertices, step 0.5,
+// `raw` (the coded values before zstd) compressed as one frame.
+std::vector<uint8_t> level_chunk(uint8_t coding_id, uint32_t count, const std::vector<uint8_t>& raw) {
+  std::vector<uint8_t> d = {1, coding_id, 0, 0};
+  const auto put32 = [&](uint32_t v) {
+    for (int i = 0; i < 4; ++i) d.push_back(static_cast<uint8_t>(v >> (8 * i)));
+  };
+  const float step = 0.5f;
+  uint32_t bits;
+  std::memcpy(&bits, &step, 4);
+  put32(count), put32(bits), put32(static_cast<uint32_t>(raw.size()));
+  std::vector<uint8_t> z(ZSTD_compressBound(raw.size()));
+  z.resize(ZSTD_compress(z.data(), z.size(), raw.data(), raw.size(), 1));
+  d.insert(d.end(), z.begin(), z.end());
+  return d;
+}
+
 // Body chunks of a valid 2-level file, to rearrange.
 struct Parts {
   Header header;
@@ -135,18 +152,7 @@ TEST_CASE("level payload rules: non-canonical varints, bad raw_size, two zstd fr
   CHECK(file_of(coding).status().code() == ErrorCode::bad_field);
 
   // Hand-made payloads: the 6 odd vertices of level 1 of a tetrahedron.
-  auto level_data = [](uint8_t coding_id, const std::vector<uint8_t>& raw) {
-    std::vector<uint8_t> d = {1, coding_id, 0, 0, 6, 0, 0, 0};
-    const float step = 0.5f;
-    uint32_t bits;
-    std::memcpy(&bits, &step, 4);
-    for (int i = 0; i < 4; ++i) d.push_back(static_cast<uint8_t>(bits >> (8 * i)));
-    for (int i = 0; i < 4; ++i) d.push_back(static_cast<uint8_t>(raw.size() >> (8 * i)));
-    std::vector<uint8_t> z(ZSTD_compressBound(raw.size()));
-    z.resize(ZSTD_compress(z.data(), z.size(), raw.data(), raw.size(), 1));
-    d.insert(d.end(), z.begin(), z.end());
-    return d;
-  };
+  auto level_data = [](uint8_t coding_id, const std::vector<uint8_t>& raw) { return level_chunk(coding_id, 6, raw); };
   CHECK(file_of(level_data(1, {0, 1, 2, 3, 4, 5})).complete());
   CHECK(file_of(level_data(1, {0x80, 0x00, 1, 2, 3, 4, 5})).status().code() == ErrorCode::bad_field);  // not shortest
   CHECK(file_of(level_data(1, {0x80, 0x80, 0x80, 0x80, 0x01, 1, 2, 3, 4, 5})).status().code() == ErrorCode::bad_field);
@@ -166,18 +172,8 @@ TEST_CASE("long level payloads: runs of one-byte varints and a bad value far in,
   const FileContents c = test::sample_contents(50, 150, 100, 1);
   constexpr uint32_t kCount = 150;
   const auto file_of = [&](uint8_t coding_id, const std::vector<uint8_t>& raw) {
-    std::vector<uint8_t> d = {1, coding_id, 0, 0};
-    for (int i = 0; i < 4; ++i) d.push_back(static_cast<uint8_t>(kCount >> (8 * i)));
-    const float step = 0.25f;
-    uint32_t bits;
-    std::memcpy(&bits, &step, 4);
-    for (int i = 0; i < 4; ++i) d.push_back(static_cast<uint8_t>(bits >> (8 * i)));
-    for (int i = 0; i < 4; ++i) d.push_back(static_cast<uint8_t>(raw.size() >> (8 * i)));
-    std::vector<uint8_t> z(ZSTD_compressBound(raw.size()));
-    z.resize(ZSTD_compress(z.data(), z.size(), raw.data(), raw.size(), 1));
-    d.insert(d.end(), z.begin(), z.end());
-    return read_all(assemble(encode_header(c.header),
-                             std::vector<RawChunk>{{kCtrl, encode_control(ControlCodec::draco, c.control_mesh)}, {kLevl, d}}));
+    return read_all(assemble(encode_header(c.header), std::vector<RawChunk>{{kCtrl, encode_control(ControlCodec::draco, c.control_mesh)},
+                                                                            {kLevl, level_chunk(coding_id, kCount, raw)}}));
   };
   // One-byte values (zigzag: 2k -> k, 2k+1 -> -k-1), then a two-byte one last.
   std::vector<uint8_t> raw;
