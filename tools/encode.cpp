@@ -139,7 +139,8 @@ int run_encode(const std::vector<std::string_view>& args) {
   row("choose grid", st.seconds.grid, nullptr, "grid " + std::to_string(st.carving.grid) + (options.control.grid ? " (given)" : " (automatic)"));
   row("cell carving", st.seconds.carve, nullptr,
       std::to_string(st.carving.occupied) + " occupied, " + std::to_string(st.carving.solid) + " solid, " +
-          std::to_string(st.carving.repaired) + " filled for manifoldness");
+          std::to_string(st.carving.repaired) + " filled for manifoldness" +
+          (options.control.grid ? "" : " (carved by the grid search)"));
   row("triangulation", st.seconds.triangulate, &st.shell,
       std::to_string(st.shell_info.components) + " component(s), genus " + std::to_string(st.shell_info.genus));
   char wrap[128];

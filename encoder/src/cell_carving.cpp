@@ -245,7 +245,9 @@ CarvingShape carving_shape(const CellGrid& g) {
   return out;
 }
 
-int choose_grid(const PointCloud& pc, int max_grid) {
+int choose_grid(const PointCloud& pc, int max_grid) { return choose_carving(pc, PointIndex(pc), max_grid).stats.grid; }
+
+CarvingChoice choose_carving(const PointCloud& pc, const PointIndex& index, int max_grid) {
   // "Closed" is tested on the carving itself.  Grids are stepped finer, from
   // cells of two spacings down to one (the spacing: the 99th percentile of
   // the points' nearest-neighbour distances; scans are sampled unevenly, and
@@ -264,21 +266,26 @@ int choose_grid(const PointCloud& pc, int max_grid) {
   for (size_t i = 0; i < pc.size(); ++i)
     for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], double{pc.xyz[3 * i + a]}), hi[a] = std::max(hi[a], double{pc.xyz[3 * i + a]});
   const double longest = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
-  const PointIndex index(pc);
   const double spacing = point_spacing(index, 1, 0.99);
-  if (!(spacing > 0) || !(longest > 0)) return 8;
+  const auto carved = [&](int g) {
+    CarvingChoice c;
+    c.cells = carve(pc, g, &c.stats);
+    return c;
+  };
+  if (!(spacing > 0) || !(longest > 0)) return carved(8);
   max_grid = std::max(max_grid, 8);
   const int finest = std::clamp(static_cast<int>(longest / spacing), 8, max_grid);
   int grid = std::clamp(static_cast<int>(longest / (2 * spacing)), 8, finest);
   std::vector<int> grids{grid};
   while (grids.back() < finest) grids.push_back(std::min(finest, grids.back() + std::max(1, grids.back() / 12)));
   struct Trial {
+    CarvingChoice carving;  // released once it can no longer be the choice
     CarvingShape shape;
-    CarvingStats stats;
   };
   auto trial = [&](int g) {
     Trial t;
-    t.shape = carving_shape(carve(pc, g, &t.stats));
+    t.carving = carved(g);
+    t.shape = carving_shape(t.carving.cells);
     return t;
   };
   // Grids are tried two at a time, one per core; the choice is the same as
@@ -303,10 +310,11 @@ int choose_grid(const PointCloud& pc, int max_grid) {
     const Trial& cur = tried[i];
     const bool collapsed = cur.shape.inside_volume < 0.5 * prev.shape.inside_volume;
     const bool torn = cur.shape.euler < prev.shape.euler - 2;
-    const bool patched = cur.stats.repaired > std::max<size_t>(2, cur.stats.occupied / 2000);
-    if (collapsed || torn || patched) return grids[i >= 2 ? i - 2 : 0];
+    const bool patched = cur.carving.stats.repaired > std::max<size_t>(2, cur.carving.stats.occupied / 2000);
+    if (collapsed || torn || patched) return std::move(tried[i >= 2 ? i - 2 : 0].carving);
+    if (i >= 2) tried[i - 2].carving = {};  // only the last two trials can still be chosen
   }
-  return grids.back();
+  return std::move(tried.back().carving);
 }
 
 }  // namespace dbss

@@ -34,12 +34,19 @@ Result<ControlMeshStages> build_control_mesh(const PointCloud& points, const Con
   stage("choosing the grid");
   auto t = Clock::now();
   const PointIndex index(points);
-  const int grid = o.grid > 0 ? o.grid : choose_grid(points);
-  s.seconds.grid = since(t);
-
-  stage("carving cells");
-  t = Clock::now();
-  s.cells = carve(points, grid, &s.carving);
+  if (o.grid > 0) {
+    s.seconds.grid = since(t);
+    stage("carving cells");
+    t = Clock::now();
+    s.cells = carve(points, o.grid, &s.carving);
+  } else {
+    // The search carves its choice on the way: its time is the grid's.
+    CarvingChoice chosen = choose_carving(points, index);
+    s.cells = std::move(chosen.cells);
+    s.carving = chosen.stats;
+    s.seconds.grid = since(t);
+    t = Clock::now();
+  }
   s.seconds.carve = since(t);
 
   stage("triangulating");

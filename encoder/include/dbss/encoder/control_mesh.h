@@ -24,7 +24,9 @@ struct ControlMeshOptions {
 };
 
 struct StageTimes {
-  double grid = 0, carve = 0, triangulate = 0, shrink_wrap = 0, simplify = 0, project = 0;  // seconds
+  // seconds; with an automatic grid the search carves the chosen grid, so
+  // `grid` includes that carving and `carve` is about zero
+  double grid = 0, carve = 0, triangulate = 0, shrink_wrap = 0, simplify = 0, project = 0;
 };
 
 struct ControlMeshStages {
