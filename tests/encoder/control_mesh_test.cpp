@@ -4,6 +4,7 @@
 #include <filesystem>
 
 #include "../sampled_shapes.h"
+#include "dbss/encoder/cell_carving.h"
 #include "dbss/encoder/control_mesh.h"
 #include "dbss/encoder/mesh_ops.h"
 #include "dbss/encoder/point_index.h"
@@ -48,6 +49,15 @@ TEST_CASE("control meshes of shapes with known genus: closed, manifold, right co
     CHECK(on_points * 10 >= st.control.vertex_count() * 9);
     // Shrink-wrapping pulled the shell onto the points.
     CHECK(st.wrap_stats.mean_distance < 0.25 * st.cells.cell);
+    // The carving the grid search handed over is carve()'s at that grid.
+    CHECK(st.carving.grid == choose_grid(pc));
+    CarvingStats again;
+    const CellGrid fresh = carve(pc, st.carving.grid, &again);
+    CHECK(fresh.n == st.cells.n);
+    CHECK(fresh.state == st.cells.state);
+    CHECK(again.occupied == st.carving.occupied);
+    CHECK(again.solid == st.carving.solid);
+    CHECK(again.repaired == st.carving.repaired);
   }
 }
 
