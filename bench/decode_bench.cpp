@@ -2,11 +2,15 @@
 // to level L's chunk: container, Draco, every level) against
 // Draco decoding the identical final mesh, OpenMesh's Modified Butterfly
 // subdivider on the same control mesh, and a plain copy of the output arrays
-// (the memory floor), all measured in one run.
+// (the memory floor), into warm memory and into fresh pages (the floor of a
+// decoder that returns new arrays), all measured in one run.  dbss also runs
+// as one decoder reset() between files, which keeps its memory.
 //
 // usage: decode_bench [max_level=6]
 //        decode_bench --profile L [seconds=5] [threads=1]
-//          only dbss's decode of level L, repeated (for perf record)
+//          only dbss's decode of level L, repeated (for perf record); with
+//          HOLD=1 in the environment another decoder keeps a decoded level
+//          meanwhile (how held memory changes the fresh decodes)
 #include <chrono>
 #include <ctime>
 #include <cmath>
