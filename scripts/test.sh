@@ -21,6 +21,14 @@ cmake --build build-asan -j "$jobs"
 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
   ctest --test-dir build-asan --output-on-failure -j "$jobs" | tee build-asan/ctest.log
 
+# The decoder's helper threads synchronise by hand (decoder/src/parallel.h):
+# its tests once more under ThreadSanitizer.
+echo "== clang, TSan: decoder tests =="
+cmake -S . -B build-tsan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ \
+  -DDBSS_SANITIZE=thread -DDBSS_BUILD_BENCH=OFF -DDBSS_WERROR=ON >/dev/null
+cmake --build build-tsan -j "$jobs" --target codec_tests
+TSAN_OPTIONS=halt_on_error=1 build-tsan/bin/codec_tests
+
 # The decoder's output is part of the format: the golden-file test must give
 # the same bits with optimisation off (gcc -O0) and with clang -O3 too.
 for cfg in "g++ Debug" "clang++ Release"; do

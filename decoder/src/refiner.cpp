@@ -3,7 +3,6 @@
 #include <cstring>
 
 #include "odd_vertices.h"
-#include "parallel.h"
 
 namespace dbss::detail {
 
@@ -94,7 +93,7 @@ TopologyRef Refiner::current_topology(unsigned threads) {
   c.boundary.resize_for_overwrite(c.vertex_count, &pool_);
   const TopologyOut out{nullptr,          c.twin.data(),    c.edge_of.data(),  c.edge_half.data(),
                         c.vertex_start.data(), c.valence.data(), c.boundary.data(), c.across.data()};
-  parallel_ranges(p.face_count, threads, [&](uint32_t fb, uint32_t fe) {
+  parallel(p.face_count, threads, [&](uint32_t fb, uint32_t fe) {
     refine_faces(p, fb, fe, out);
     // Even vertices: the same share of the parent's vertices.
     const uint64_t n = p.vertex_count;
@@ -142,20 +141,20 @@ void Refiner::step_impl(const int32_t* q, const OddChooser* choose, int32_t* cho
   const bool moves = q || choose;
   float* per_half = moves ? triangles_.reuse_as<float>(9 * size_t{t.face_count} + 1) : nullptr;
   if (per_half) per_half[9 * size_t{t.face_count}] = 0;  // slack (inside the 12 per face)
-  parallel_ranges(t.face_count, threads, [&](uint32_t fb, uint32_t fe) {
+  parallel(t.face_count, threads, [&](uint32_t fb, uint32_t fe) {
     stencil_points(t, p, fb, fe, per_half ? nullptr : out_odd, per_half);
     const size_t vb = size_t{evens} * fb / t.face_count, ve = size_t{evens} * fe / t.face_count;
     std::memcpy(out + 3 * vb, p + 3 * vb, sizeof(float) * 3 * (ve - vb));
   });
   // Pass 2: normals from the undisplaced level, and the displacements.
   if (per_half)
-    parallel_ranges(t.face_count, threads, [&](uint32_t fb, uint32_t fe) {
+    parallel(t.face_count, threads, [&](uint32_t fb, uint32_t fe) {
       if (choose) displaced_points_chosen(t, p, per_half, *choose, chosen, step, fb, fe, out_odd);
       else displaced_points(t, p, per_half, q, step, fb, fe, out_odd);
     });
   // Pass 3: the next level's triangles, over the stencil points.
   uint32_t* tri = triangles_.reuse_as<uint32_t>(12 * size_t{t.face_count});
-  parallel_ranges(t.face_count, threads, [&](uint32_t fb, uint32_t fe) { refine_triangle_range(t, fb, fe, tri); });
+  parallel(t.face_count, threads, [&](uint32_t fb, uint32_t fe) { refine_triangle_range(t, fb, fe, tri); });
   positions_.swap(next_positions_);
   position_floats_ = floats;
   ++level_;

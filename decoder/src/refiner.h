@@ -9,9 +9,11 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <span>
 
 #include "buffer.h"
+#include "parallel.h"
 #include "dbss/decoder/level_refiner.h"
 #include "topology_ref.h"
 
@@ -56,6 +58,15 @@ class Refiner {
   // The connectivity of the current level (built from `parent_`), as a ref.
   TopologyRef current_topology(unsigned threads);
 
+  // fn over [0, n) on up to `threads` threads, with helpers kept between
+  // passes and levels.
+  template <class F>
+  void parallel(uint32_t n, unsigned threads, F&& fn) {
+    if (!workers_) workers_ = std::make_unique<Workers>();
+    workers_->run(n, threads, fn);
+  }
+
+  std::unique_ptr<Workers> workers_;  // made on first use; a pointer keeps Refiner movable
   BlockPool pool_;  // the last stream's storage, after recycle()
   const LevelTopology* base_ = nullptr;
   Buffer<uint32_t> base_across_;

@@ -22,7 +22,9 @@ namespace dbss {
 struct DecoderOptions {
   format::Limits limits;
   // Threads for large levels; 0 = std::thread::hardware_concurrency().  The
-  // output is the same for any value.
+  // output is the same for any value.  The decoder starts its helper threads
+  // on the first large level and keeps them, asleep between levels, until it
+  // is destroyed.
   unsigned threads = 0;
   // Keep every decoded level so going back to a coarser level costs nothing.
   // Off: only the control mesh and the current level are kept, and a coarser
