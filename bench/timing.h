@@ -7,13 +7,13 @@
 
 namespace dbss::bench {
 
-// Runs f at least 3 and at most 20 times, stopping once `budget` seconds
+// Runs f at least 3 and at most 100 times, stopping once `budget` seconds
 // have been spent; returns the fastest run in seconds.
 template <class F>
 double best_seconds(F&& f, double budget = 0.5) {
   using Clock = std::chrono::steady_clock;
   double best = 1e30, spent = 0;
-  for (int i = 0; i < 20 && (i < 3 || spent < budget); ++i) {
+  for (int i = 0; i < 100 && (i < 3 || spent < budget); ++i) {
     const auto t0 = Clock::now();
     f();
     const double s = std::chrono::duration<double>(Clock::now() - t0).count();
