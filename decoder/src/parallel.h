@@ -59,8 +59,9 @@ class Workers {
     for (auto& t : helpers_) t.join();
   }
 
-  // As parallel_ranges (same pieces, so the same results), fn must not
-  // throw; a helper the system refuses leaves its piece to this thread.
+  // As parallel_ranges: each element is written by one piece, so any split
+  // gives the same results.  fn must not throw; a helper the system refuses
+  // means fewer pieces.
   template <class F>
   void run(uint32_t n, unsigned threads, F&& fn, uint32_t min_piece = kMinPerThread) {
     threads = std::max(1u, std::min<unsigned>(threads, n / std::max(1u, min_piece)));
@@ -84,11 +85,18 @@ class Workers {
       const unsigned left = pending_.load(std::memory_order_acquire);  // sees the helpers' writes
       if (left == 0) break;
       if (spin > kSpin) pending_.wait(left, std::memory_order_acquire);
+      else relax();
     }
   }
 
  private:
-  static constexpr unsigned kSpin = 1u << 14;
+  static constexpr unsigned kSpin = 1u << 12;
+  // A spinning core tells the processor it is waiting.
+  static void relax() noexcept {
+#if defined(__x86_64__) || defined(__i386__)
+    __builtin_ia32_pause();
+#endif
+  }
   struct Job {
     void (*call)(const void*, uint32_t, uint32_t);
     const void* fn;
@@ -113,6 +121,7 @@ class Workers {
       uint32_t now;
       for (unsigned spin = 0; (now = generation_.load(std::memory_order_acquire)) == seen; ++spin)
         if (spin > kSpin) generation_.wait(seen, std::memory_order_acquire);
+        else relax();
       seen = now;
       if (stop_.load(std::memory_order_relaxed)) return;
       if (piece < job_.pieces) {
