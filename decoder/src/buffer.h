@@ -94,12 +94,6 @@ class Buffer {
     }
     size_ = n;
   }
-  // Hands the storage to `pool` (and empties the buffer).
-  void release_to(BlockPool& pool) noexcept {
-    pool.put(data_, capacity_ * sizeof(T));
-    data_ = nullptr;
-    size_ = capacity_ = 0;
-  }
   // The storage as n uninitialised U (n * sizeof(U) must fit the capacity):
   // lets one large array serve as scratch before it receives its own
   // contents.  The T values end; call resize_for_overwrite (or reuse_as<T>)
@@ -109,8 +103,11 @@ class Buffer {
     static_assert(std::is_trivially_copyable_v<U> && alignof(U) <= alignof(std::max_align_t));
     return ::new (static_cast<void*>(data_)) U[n];  // trivial U: no initialisation, no cookie
   }
-  void release() noexcept {
-    free_large(data_);
+  // Empties the buffer: its storage goes to `pool` if given, else back to
+  // the system.
+  void release(BlockPool* pool = nullptr) noexcept {
+    if (pool) pool->put(data_, capacity_ * sizeof(T));
+    else free_large(data_);
     data_ = nullptr;
     size_ = capacity_ = 0;
   }

@@ -16,34 +16,10 @@ namespace dbss::detail {
 inline constexpr uint32_t kMinPerThread = 8192;
 
 // Runs fn(begin, end) over [0, n) in at most `threads` contiguous pieces of
-// at least `min_piece` elements; fn must not throw.  Callers write each
-// output element from exactly one piece, so the split cannot change any
-// value.  If the system refuses a thread, its piece runs on this one.
-template <class F>
-void parallel_ranges(uint32_t n, unsigned threads, F&& fn, uint32_t min_piece = kMinPerThread) {
-  threads = std::max(1u, std::min<unsigned>(threads, n / std::max(1u, min_piece)));
-  if (threads <= 1) {
-    fn(0u, n);
-    return;
-  }
-  std::vector<std::thread> pool;
-  pool.reserve(threads - 1);  // may throw, but before any thread runs
-  const uint32_t chunk = (n + threads - 1) / threads;
-  for (unsigned i = 1; i < threads; ++i) {
-    const uint32_t b = std::min(n, i * chunk), e = std::min(n, b + chunk);
-    try {
-      pool.emplace_back([&fn, b, e] { fn(b, e); });
-    } catch (const std::system_error&) {
-      fn(b, e);  // no thread to be had: same result, this thread does it
-    }
-  }
-  fn(0u, std::min(n, chunk));
-  for (auto& t : pool) t.join();
-}
-
-// The same split with helper threads kept from one call to the next:
-// starting and joining a thread costs 24-35 µs here, and a level step makes
-// four parallel passes, so fresh threads cost a level-4 decode about 8%.
+// at least `min_piece` elements, with helper threads kept from one call to
+// the next: starting and joining a thread costs 24-35 µs here, and a level
+// step makes four parallel passes, so fresh threads cost a level-4 decode
+// about 8%.
 // Between calls the helpers spin a little (passes follow each other within
 // microseconds), then sleep on a futex (std::atomic::wait).  One caller at a
 // time; the destructor stops and joins the helpers.
@@ -59,8 +35,8 @@ class Workers {
     for (auto& t : helpers_) t.join();
   }
 
-  // As parallel_ranges: each element is written by one piece, so any split
-  // gives the same results.  fn must not throw; a helper the system refuses
+  // Callers write each output element from exactly one piece, so any split
+  // gives the same values.  fn must not throw; a helper the system refuses
   // means fewer pieces.
   template <class F>
   void run(uint32_t n, unsigned threads, F&& fn, uint32_t min_piece = kMinPerThread) {
@@ -138,5 +114,14 @@ class Workers {
   std::atomic<unsigned> pending_{0};
   std::atomic<bool> stop_{false};
 };
+
+// Runs fn(begin, end) over [0, n) in at most `threads` contiguous pieces of
+// at least `min_piece` elements, on threads started for this call only (for
+// callers that make one parallel pass, not many); fn must not throw.
+template <class F>
+void parallel_ranges(uint32_t n, unsigned threads, F&& fn, uint32_t min_piece = kMinPerThread) {
+  Workers w;
+  w.run(n, threads, fn, min_piece);
+}
 
 }  // namespace dbss::detail

@@ -1,6 +1,7 @@
 #include "refiner.h"
 
 #include <cstring>
+#include <utility>
 
 #include "odd_vertices.h"
 
@@ -15,25 +16,25 @@ TopologyRef Refiner::Topology::ref() const {
   return r;
 }
 
-void Refiner::Topology::release() {
-  for (Buffer<uint32_t>* b : {&tri, &twin, &edge_of, &edge_half, &vertex_start, &across}) b->release();
-  valence.release();
-  boundary.release();
+void Refiner::Topology::release(BlockPool* pool) {
+  for (Buffer<uint32_t>* b : {&tri, &twin, &edge_of, &edge_half, &vertex_start, &across}) b->release(pool);
+  valence.release(pool);
+  boundary.release(pool);
 }
 
-void Refiner::Topology::release_to(BlockPool& pool) {
-  for (Buffer<uint32_t>* b : {&tri, &twin, &edge_of, &edge_half, &vertex_start, &across}) b->release_to(pool);
-  valence.release_to(pool);
-  boundary.release_to(pool);
+void Refiner::Topology::swap(Topology& o) noexcept {
+  std::swap(vertex_count, o.vertex_count), std::swap(face_count, o.face_count), std::swap(edge_count, o.edge_count);
+  tri.swap(o.tri), twin.swap(o.twin), edge_of.swap(o.edge_of), edge_half.swap(o.edge_half);
+  vertex_start.swap(o.vertex_start), across.swap(o.across), valence.swap(o.valence), boundary.swap(o.boundary);
 }
 
 void Refiner::recycle() {
   pool_.clear();  // what the last stream did not reuse
-  parent_.release_to(pool_);
-  spare_.release_to(pool_);
-  for (Buffer<float>* b : {&positions_, &next_positions_}) b->release_to(pool_);
-  triangles_.release_to(pool_);
-  base_across_.release_to(pool_);
+  parent_.release(&pool_);
+  spare_.release(&pool_);
+  for (Buffer<float>* b : {&positions_, &next_positions_}) b->release(&pool_);
+  triangles_.release(&pool_);
+  base_across_.release(&pool_);
   position_floats_ = 0;
   base_ = nullptr;
   level_ = 0;
@@ -100,17 +101,7 @@ TopologyRef Refiner::current_topology(unsigned threads) {
     refine_vertices(p, static_cast<uint32_t>(n * fb / p.face_count), static_cast<uint32_t>(n * fe / p.face_count),
                     out);
   });
-  parent_.tri.swap(c.tri);  // parent_ becomes level L; its old buffers are reused next time
-  parent_.twin.swap(c.twin);
-  parent_.edge_of.swap(c.edge_of);
-  parent_.across.swap(c.across);
-  parent_.edge_half.swap(c.edge_half);
-  parent_.vertex_start.swap(c.vertex_start);
-  parent_.valence.swap(c.valence);
-  parent_.boundary.swap(c.boundary);
-  parent_.vertex_count = c.vertex_count;
-  parent_.face_count = c.face_count;
-  parent_.edge_count = c.edge_count;
+  parent_.swap(c);  // parent_ becomes level L; spare_ holds L-1's buffers until the step frees them
   return parent_.ref();
 }
 

@@ -50,8 +50,8 @@ class Refiner {
     Buffer<uint16_t> valence;
     Buffer<uint8_t> boundary;
     TopologyRef ref() const;
-    void release();
-    void release_to(BlockPool& pool);
+    void release(BlockPool* pool = nullptr);  // storage to `pool`, or freed
+    void swap(Topology& o) noexcept;
   };
   void step_impl(const int32_t* q, const OddChooser* choose, int32_t* chosen, float step, unsigned threads);
   TopologyRef base_topology() const;
