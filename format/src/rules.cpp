@@ -1,8 +1,7 @@
 #include "rules.h"
 
-#include <cstring>
-
 #include <cmath>
+#include <cstring>
 #include <string>
 
 namespace dbss::format::detail {
