@@ -28,8 +28,9 @@ constexpr const char* kHelpTail =
     "Columns: samples are stored displacements; dbss bytes are the file prefix\n"
     "that decodes levels 0..L; DSS bytes are header + control mesh + that level\n"
     "alone ('level') or every level so far ('all'); errors are relative to the\n"
-    "bounding-box diagonal: mean two-sided distance between the points and the\n"
-    "surface, and Hausdorff distance.\n"
+    "bounding-box diagonal: the points' mean distance to the surface, the mean\n"
+    "two-sided distance between points and surface, and the Hausdorff\n"
+    "distance; clamped: displacements clamped to the sampling range, dbss/DSS.\n"
     "\n"
     "Exit status: 0 done, 1 bad input or usage, 2 internal error.\n";
 

@@ -21,7 +21,7 @@ constexpr const char* kUsage =
     "\n"
     "commands:\n"
     "  encode INPUT -o OUT.dbss   reconstruct a point cloud or mesh and write it\n"
-    "  decode IN.dbss -o OUT      one level as a .ply, .obj or .off mesh\n"
+    "  decode IN.dbss -o OUT      one level as a .ply, .obj, .off or .stl mesh\n"
     "  info IN.dbss [--json]      chunks, sizes, per-level counts, steps and checksum status\n"
     "  compare INPUT [--json]     sizes and errors per level: dbss vs full-vertex DSS vs Draco\n"
     "\n"
