@@ -99,6 +99,13 @@ file(READ ${WORK}/keep.dbss kept)
 if(NOT kept STREQUAL "the old output")
   message(FATAL_ERROR "a failed encode changed the existing output")
 endif()
+# A --dump-stages directory that cannot be made fails before any output.
+file(WRITE ${WORK}/not-a-dir "")
+file(REMOVE ${WORK}/dumped.dbss)
+expect_run(1 "cannot create directory" ${DBSS} encode ${example} -o ${WORK}/dumped.dbss --dump-stages ${WORK}/not-a-dir/stages)
+if(EXISTS ${WORK}/dumped.dbss)
+  message(FATAL_ERROR "a failed --dump-stages left an output behind")
+endif()
 # --effort and --control-bits reach the file, and it still decodes.
 expect_run(0 "-> " ${DBSS} encode ${example} -o ${WORK}/e1.dbss --levels 1 --effort 1 --control-bits 12)
 expect_run(0 "complete, every chunk verified" ${DBSS} info ${WORK}/e1.dbss)

@@ -1,12 +1,12 @@
 #include "decode.h"
 
-#include <charconv>
 #include <cstdio>
 #include <string>
 
 #include "dbss/decoder/progressive.h"
 #include "dbss/encoder/mesh_io.h"
 #include "dbss/format/reader.h"
+#include "encode_options.h"  // parse_int
 #include "progress.h"
 
 namespace dbss::tools {
@@ -43,10 +43,7 @@ int run_decode(const std::vector<std::string_view>& args) {
       output = args[++i];
     } else if (a == "--level") {
       if (i + 1 >= args.size()) return usage("--level needs a number");
-      const std::string_view v = args[++i];
-      const auto r = std::from_chars(v.data(), v.data() + v.size(), level);
-      if (r.ec != std::errc() || r.ptr != v.data() + v.size() || level < 0 || level > 30)
-        return usage("--level needs a whole number from 0 to 30");
+      if (!parse_int(args[++i], 0, 30, level)) return usage("--level needs a whole number from 0 to 30");
     } else if (!a.empty() && a[0] == '-') {
       return usage("unknown option '" + std::string(a) + "'");
     } else if (input.empty()) {
@@ -87,15 +84,17 @@ int run_decode(const std::vector<std::string_view>& args) {
   Progress progress("dbss decode");
   auto mesh = d.decode(want);
   if (!mesh.ok()) {
+    progress.done();
     std::fprintf(stderr, "dbss decode: %s: %s\n", input.c_str(), mesh.status().to_string().c_str());
     return 1;
   }
   progress.show("writing " + output);
-  if (Status s = write_mesh(output, mesh.value().copy()); !s.ok()) {
-    std::fprintf(stderr, "dbss decode: %s\n", s.message().c_str());
+  const Status written = write_mesh(output, mesh.value().copy());
+  progress.done();  // before any message, so none shares the progress line
+  if (!written.ok()) {
+    std::fprintf(stderr, "dbss decode: %s\n", written.message().c_str());
     return 1;
   }
-  progress.done();
   std::printf("%s: level %u, %zu vertices, %zu triangles -> %s\n", input.c_str(), want, mesh.value().vertex_count(),
               mesh.value().triangle_count(), output.c_str());
   return 0;

@@ -2,9 +2,6 @@
 #include "encode_options.h"
 #include "progress.h"
 
-#include <charconv>
-#include <cmath>
-#include <cstdlib>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -77,6 +74,15 @@ int run_encode(const std::vector<std::string_view>& args) {
   if (input.empty()) return usage("no input file");
   if (output.empty()) return usage("no output file (-o OUT.dbss)");
 
+  if (!dump.empty()) {
+    // Before the work: a bad directory fails the command with no output written.
+    std::error_code ec;
+    std::filesystem::create_directories(dump, ec);
+    if (ec) {
+      std::fprintf(stderr, "dbss encode: %s: cannot create directory: %s\n", dump.c_str(), ec.message().c_str());
+      return 1;
+    }
+  }
   using Clock = std::chrono::steady_clock;
   Progress progress("dbss encode");
   const auto t0 = Clock::now();
@@ -96,6 +102,7 @@ int run_encode(const std::vector<std::string_view>& args) {
   options.encoder_version = DBSS_VERSION;
   options.on_progress = [&](const std::string& what) { progress.show(what); };
   auto encoding = encode_points(pc, options);
+  progress.done();  // before any message, so none shares the progress line
   if (!encoding.ok()) {
     std::fprintf(stderr, "dbss encode: %s: %s\n", input.c_str(), encoding.status().to_string().c_str());
     return encoding.status().code() == ErrorCode::internal ? 2 : 1;
@@ -108,12 +115,6 @@ int run_encode(const std::vector<std::string_view>& args) {
   }
 
   if (!dump.empty()) {
-    std::error_code ec;
-    std::filesystem::create_directories(dump, ec);
-    if (ec) {
-      std::fprintf(stderr, "dbss encode: %s: cannot create directory: %s\n", dump.c_str(), ec.message().c_str());
-      return 1;
-    }
     const std::string d = dump + "/";
     Status s;
     if (s.ok()) s = write_cells_obj(d + "1-occupied-cells.obj", st.cells, true);
@@ -128,7 +129,6 @@ int run_encode(const std::vector<std::string_view>& args) {
     }
   }
 
-  progress.done();
   std::printf("%s: %zu points -> %s: %zu bytes\n", input.c_str(), pc.size(), output.c_str(), e.bytes.size());
   std::printf("%-22s %9s %10s %10s  %s\n", "stage", "ms", "vertices", "triangles", "notes");
   auto row = [](const char* name, double s, const TriangleMesh* m, const std::string& notes) {

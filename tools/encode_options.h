@@ -20,7 +20,7 @@ enum class OptionParse { not_mine, ok, bad };
 OptionParse parse_encode_option(const std::vector<std::string_view>& args, size_t& i, EncodeOptions& o,
                                 std::string& error);
 
-// Whole number in [lo, hi], nothing else in `s`.
+// Whole number in [lo, hi], nothing else in `s` (also decode's --level).
 bool parse_int(std::string_view s, long lo, long hi, long& out);
 
 }  // namespace dbss::tools
