@@ -7,6 +7,8 @@
 #include <map>
 #include <numbers>
 
+#include "dbss/encoder/surface_distance.h"
+
 namespace dbss {
 
 namespace {
@@ -162,57 +164,15 @@ size_t untangle_folds(TriangleMesh& m, int rounds) {
   return met;
 }
 
-namespace {
-// Distance from p to triangle abc (Ericson, Real-Time Collision Detection 5.1.5).
-double point_triangle(const V3& p, const V3& a, const V3& b, const V3& c) {
-  const V3 ab = sub(b, a), ac = sub(c, a), ap = sub(p, a);
-  auto at = [&](double u, double v) {  // point a + u ab + v ac
-    const V3 q{a[0] + u * ab[0] + v * ac[0], a[1] + u * ab[1] + v * ac[1], a[2] + u * ab[2] + v * ac[2]};
-    const V3 d = sub(p, q);
-    return std::sqrt(dot(d, d));
-  };
-  const double d1 = dot(ab, ap), d2 = dot(ac, ap);
-  if (d1 <= 0 && d2 <= 0) return at(0, 0);
-  const V3 bp = sub(p, b);
-  const double d3 = dot(ab, bp), d4 = dot(ac, bp);
-  if (d3 >= 0 && d4 <= d3) return at(1, 0);
-  const double vc = d1 * d4 - d3 * d2;
-  if (vc <= 0 && d1 >= 0 && d3 <= 0) return at(d1 / (d1 - d3), 0);
-  const V3 cp = sub(p, c);
-  const double d5 = dot(ab, cp), d6 = dot(ac, cp);
-  if (d6 >= 0 && d5 <= d6) return at(0, 1);
-  const double vb = d5 * d2 - d1 * d6;
-  if (vb <= 0 && d2 >= 0 && d6 <= 0) return at(0, d2 / (d2 - d6));
-  const double va = d3 * d6 - d5 * d4;
-  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
-    const double w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
-    return at(1 - w, w);
-  }
-  const double denom = 1 / (va + vb + vc);
-  return at(vb * denom, vc * denom);
-}
-}  // namespace
-
 SurfaceDistance points_to_mesh(const std::vector<float>& xyz, const TriangleMesh& m) {
-  PointCloud verts;
-  verts.xyz = m.positions;
-  const PointIndex index(verts);
-  const Adjacency vt = vertex_triangles(m);
+  const TriangleTree tree(m);
   SurfaceDistance out;
   const size_t n = xyz.size() / 3;
-  uint32_t near[6];
-  float d2[6];
   for (size_t i = 0; i < n; ++i) {
-    const V3 p{xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]};
-    const size_t k = index.nearest_k(&xyz[3 * i], 6, near, d2);
-    double best = 1e300;
-    for (size_t j = 0; j < k; ++j)
-      for (uint32_t t = vt.offset[near[j]]; t < vt.offset[near[j] + 1]; ++t) {
-        const uint32_t f = vt.index[t];
-        best = std::min(best, point_triangle(p, pos(m, m.triangles[3 * f]), pos(m, m.triangles[3 * f + 1]), pos(m, m.triangles[3 * f + 2])));
-      }
-    out.mean += best;
-    out.max = std::max(out.max, best);
+    const double p[3] = {xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]};
+    const double d = tree.distance(p);
+    out.mean += d;
+    out.max = std::max(out.max, d);
   }
   if (n) out.mean /= n;
   return out;

@@ -44,9 +44,8 @@ std::vector<uint32_t> foldover_vertices(const TriangleMesh& m, double max_angle_
 // folded edges met.
 size_t untangle_folds(TriangleMesh& m, int rounds = 8);
 
-// Mean and largest distance from each point to the mesh's surface (the
-// triangles around its 6 nearest mesh vertices, exact once the mesh is finer
-// than the point spacing).
+// Mean and largest exact distance from each point to the mesh's surface
+// (through surface_distance.h's TriangleTree).
 struct SurfaceDistance {
   double mean = 0, max = 0;
 };
