@@ -1,16 +1,15 @@
 #include "dbss/encoder/dss_baseline.h"
 
 #include <algorithm>
-#include <climits>
 #include <cmath>
 
 #include "dbss/decoder/topology.h"
+#include "dbss/encoder/levels.h"
 #include "dbss/encoder/loop_subdivision.h"
 #include "dbss/encoder/mesh_ops.h"
 #include "dbss/encoder/point_index.h"
 #include "dbss/encoder/sampling.h"
 #include "dbss/format/container.h"
-#include "dbss/format/writer.h"
 
 namespace dbss {
 
@@ -74,14 +73,9 @@ Result<std::vector<DssLevel>> encode_dss_baseline(const TriangleMesh& control, c
       const float dq = static_cast<float>(q) * o.step;
       for (int a = 0; a < 3; ++a) d.mesh.positions[3 * size_t{v} + a] = static_cast<float>(p[a] + dq * n[a]);
     }
-    size_t best = SIZE_MAX;
-    for (auto coding : {format::DisplacementCoding::byte_planes, format::DisplacementCoding::varint}) {
-      level.coding = coding;
-      auto data = format::encode_level(level, o.zstd_level);
-      if (!data.ok()) return data.status();
-      best = std::min(best, data.value().size());
-    }
-    d.bytes = best + format::kChunkOverhead;
+    auto bytes = choose_coding(level, o.zstd_level);  // the same coding choice as dbss's levels
+    if (!bytes.ok()) return bytes.status();
+    d.bytes = bytes.value() + format::kChunkOverhead;
     out.push_back(std::move(d));
   }
   return out;

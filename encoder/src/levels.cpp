@@ -9,6 +9,19 @@
 
 namespace dbss {
 
+Result<size_t> choose_coding(format::Level& level, int zstd_level) {
+  size_t best = SIZE_MAX;
+  format::DisplacementCoding best_coding = level.coding;
+  for (auto coding : {format::DisplacementCoding::byte_planes, format::DisplacementCoding::varint}) {
+    level.coding = coding;
+    auto data = format::encode_level(level, zstd_level);
+    if (!data.ok()) return data.status();
+    if (data.value().size() < best) best = data.value().size(), best_coding = coding;
+  }
+  level.coding = best_coding;
+  return best;
+}
+
 Result<EncodedLevels> encode_levels(const TriangleMesh& control, const PointIndex& points, double diagonal,
                                     const LevelEncodeOptions& o) {
   if (!(o.error > 0) || !(diagonal > 0)) return Status(ErrorCode::invalid_argument, "error and diagonal must be positive");
@@ -61,16 +74,10 @@ Result<EncodedLevels> encode_levels(const TriangleMesh& control, const PointInde
     }
     st.mean_abs_displacement = odd ? sum_abs / odd : 0;
 
-    // Both payload layouts; keep the smaller.
-    size_t best = SIZE_MAX;
-    for (auto coding : {format::DisplacementCoding::byte_planes, format::DisplacementCoding::varint}) {
-      level.coding = coding;
-      auto data = format::encode_level(level, o.zstd_level);
-      if (!data.ok()) return data.status();
-      if (data.value().size() < best) best = data.value().size(), st.coding = coding;
-    }
-    level.coding = st.coding;
-    st.bytes = best;
+    auto bytes = choose_coding(level, o.zstd_level);
+    if (!bytes.ok()) return bytes.status();
+    st.bytes = bytes.value();
+    st.coding = level.coding;
 
     out.positions.emplace_back(r.positions().begin(), r.positions().end());
     out.triangles.emplace_back(r.triangles().begin(), r.triangles().end());

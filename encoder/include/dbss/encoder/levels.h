@@ -43,6 +43,10 @@ struct EncodedLevels {
   std::vector<std::vector<uint32_t>> triangles;
 };
 
+// Sets level.coding to the payload layout that makes the smaller LEVL chunk
+// data and returns that size in bytes (both layouts are tried).
+Result<size_t> choose_coding(format::Level& level, int zstd_level);
+
 // `control` must be the Draco-decoded control mesh.  `diagonal` is the
 // bounding-box diagonal the error is relative to.
 Result<EncodedLevels> encode_levels(const TriangleMesh& control, const PointIndex& points, double diagonal,
