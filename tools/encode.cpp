@@ -143,9 +143,12 @@ int run_encode(const std::vector<std::string_view>& args) {
           (options.control.grid ? "" : " (carved by the grid search)"));
   row("triangulation", st.seconds.triangulate, &st.shell,
       std::to_string(st.shell_info.components) + " component(s), genus " + std::to_string(st.shell_info.genus));
-  char wrap[128];
+  char wrap[192];
   std::snprintf(wrap, sizeof wrap, "%d iterations, mean distance %.3g", st.wrap_stats.iterations, st.wrap_stats.mean_distance);
-  row("shrink-wrapping", st.seconds.shrink_wrap, &st.wrapped, wrap);
+  std::string wrap_notes = wrap;
+  if (st.wrap_stats.untangled) wrap_notes += ", " + std::to_string(st.wrap_stats.untangled) + " folded edges smoothed";
+  if (st.wrap_stats.undone) wrap_notes += ", " + std::to_string(st.wrap_stats.undone) + " moves undone (triangles crossed)";
+  row("shrink-wrapping", st.seconds.shrink_wrap, &st.wrapped, wrap_notes);
   row("QEM simplification", st.seconds.simplify, &st.simplified, "");
   row("projection", st.seconds.project, &st.control, std::to_string(st.projection_skipped) + " vertices kept off the points");
   row("Draco", e.seconds.draco, &e.control, std::to_string(e.contents.control_mesh.size()) + " bytes of Draco, " + std::to_string(options.control_bits) + "-bit positions");

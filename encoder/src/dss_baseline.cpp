@@ -37,7 +37,6 @@ Result<std::vector<DssLevel>> encode_dss_baseline(const TriangleMesh& control, c
     domain = std::move(next);
 
     DssLevel d;
-    d.level = l;
     d.mesh.triangles = t.triangles;
     d.mesh.positions = domain;
     const std::vector<std::array<double, 3>> normals = vertex_normals(d.mesh);

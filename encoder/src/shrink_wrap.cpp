@@ -72,7 +72,7 @@ ShrinkWrapStats shrink_wrap(TriangleMesh& m, const PointIndex& index, const Shri
     }
     if (converged) break;
   }
-  safe = m.positions;
+  // `safe` is the state the loop left (its last pass always checks).
   stats.untangled = untangle_folds(m);
   stats.undone += undo_self_intersections(m, safe);
   double sum = 0, worst = 0;

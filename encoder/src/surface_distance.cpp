@@ -186,7 +186,6 @@ TwoSidedDistance two_sided_distance(const PointIndex& index, const TriangleMesh&
         tri_sum += d;
         out.mesh_to_points_max = std::max(out.mesh_to_points_max, d);
       }
-    out.mesh_samples += samples;
     weighted += area * tri_sum / static_cast<double>(samples);
     area_sum += area;
   }

@@ -21,8 +21,7 @@ struct DssOptions {
   int zstd_level = 19;   // as dbss's --effort
 };
 
-struct DssLevel {
-  uint32_t level = 0;
+struct DssLevel {  // level l of the result is element l - 1
   size_t samples = 0;   // displacements stored for this level: its vertex count V_l
   size_t clamped = 0;   // samples cut to the sampler's limit
   size_t bytes = 0;     // one LEVL-style chunk for the level: framing + zstd payload (smaller coding)

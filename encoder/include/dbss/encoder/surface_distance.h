@@ -43,7 +43,6 @@ class TriangleTree {
 struct TwoSidedDistance {
   double points_to_mesh_mean = 0, points_to_mesh_max = 0;
   double mesh_to_points_mean = 0, mesh_to_points_max = 0;
-  size_t mesh_samples = 0;
   double mean() const noexcept { return 0.5 * (points_to_mesh_mean + mesh_to_points_mean); }
   double hausdorff() const noexcept { return points_to_mesh_max > mesh_to_points_max ? points_to_mesh_max : mesh_to_points_max; }
 };
