@@ -15,12 +15,13 @@ RelativeError relative(const PointIndex& index, const TriangleMesh& mesh, double
 }  // namespace
 
 Result<Comparison> compare_representations(const PointCloud& points, const EncodeOptions& eo, const CompareOptions& o) {
-  auto encoded = encode_points(points, eo);
+  if (points.size() == 0) return Status(ErrorCode::invalid_argument, "no points");
+  const PointIndex index(points);
+  auto encoded = encode_points(index, eo);
   if (!encoded.ok()) return encoded.status();
   Comparison c;
   c.encoding = std::move(encoded).value();
   const Encoding& e = c.encoding;
-  const PointIndex index(points);
   const uint32_t levels = static_cast<uint32_t>(e.levels.levels.size());
   const float step = levels ? e.levels.levels[0].step : 0.0f;
   std::vector<DssLevel> dss;

@@ -27,13 +27,17 @@ Status check_stage(const TriangleMesh& m, const MeshInfo& want, const char* stag
 }  // namespace
 
 Result<ControlMeshStages> build_control_mesh(const PointCloud& points, const ControlMeshOptions& o) {
+  return build_control_mesh(PointIndex(points), o);
+}
+
+Result<ControlMeshStages> build_control_mesh(const PointIndex& index, const ControlMeshOptions& o) {
+  const PointCloud& points = index.points();
   ControlMeshStages s;
   auto stage = [&](const char* name) {
     if (o.on_stage) o.on_stage(name);
   };
   stage("choosing the grid");
   auto t = Clock::now();
-  const PointIndex index(points);
   if (o.grid > 0) {
     s.seconds.grid = since(t);
     stage("carving cells");

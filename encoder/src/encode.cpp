@@ -20,6 +20,12 @@ double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::
 }  // namespace
 
 Result<Encoding> encode_points(const PointCloud& pc, const EncodeOptions& o) {
+  if (pc.size() == 0) return Status(ErrorCode::invalid_argument, "no points");
+  return encode_points(PointIndex(pc), o);
+}
+
+Result<Encoding> encode_points(const PointIndex& index, const EncodeOptions& o) {
+  const PointCloud& pc = index.points();
   if (o.control_bits < 8 || o.control_bits > 30) return Status(ErrorCode::invalid_argument, "control bits must be 8..30");
   if (o.levels > format::kMaxLevelsInFormat) return Status(ErrorCode::invalid_argument, "too many levels");
   if (pc.size() == 0) return Status(ErrorCode::invalid_argument, "no points");
@@ -27,7 +33,7 @@ Result<Encoding> encode_points(const PointCloud& pc, const EncodeOptions& o) {
   auto t = Clock::now();
   ControlMeshOptions co = o.control;
   if (!co.on_stage && o.on_progress) co.on_stage = [&](const char* s) { o.on_progress(s); };
-  auto stages = build_control_mesh(pc, co);
+  auto stages = build_control_mesh(index, co);
   if (!stages.ok()) return stages.status();
   e.stages = std::move(stages).value();
   e.seconds.control = since(t);
@@ -62,7 +68,6 @@ Result<Encoding> encode_points(const PointCloud& pc, const EncodeOptions& o) {
   e.diagonal = std::sqrt(diag2);
 
   t = Clock::now();
-  const PointIndex index(pc);
   LevelEncodeOptions lo;
   lo.levels = o.levels;
   e.error = o.step > 0 ? o.step / (2 * e.diagonal) : o.error;

@@ -7,6 +7,7 @@
 
 #include "dbss/decoder/mesh.h"
 #include "dbss/encoder/cell_carving.h"
+#include "dbss/encoder/point_index.h"
 #include "dbss/encoder/point_input.h"
 #include "dbss/encoder/shell_mesh.h"
 #include "dbss/encoder/shrink_wrap.h"
@@ -47,5 +48,8 @@ struct ControlMeshStages {
 // Runs every stage.  Fails with invalid_argument for unusable points and
 // internal if a stage breaks the closed-manifold invariant (a bug).
 Result<ControlMeshStages> build_control_mesh(const PointCloud& points, const ControlMeshOptions& options = {});
+// The same with the caller's index over the points (built once for several
+// stages of a pipeline).
+Result<ControlMeshStages> build_control_mesh(const PointIndex& points, const ControlMeshOptions& options = {});
 
 }  // namespace dbss

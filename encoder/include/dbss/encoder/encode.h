@@ -11,6 +11,7 @@
 #include "dbss/decoder/mesh.h"
 #include "dbss/encoder/control_mesh.h"
 #include "dbss/encoder/levels.h"
+#include "dbss/encoder/point_index.h"
 #include "dbss/encoder/point_input.h"
 #include "dbss/format/container.h"
 #include "dbss/format/writer.h"
@@ -54,6 +55,8 @@ struct Encoding {
 // Errors: invalid_argument for unusable points or options, internal for a
 // stage that broke an invariant (a bug).
 Result<Encoding> encode_points(const PointCloud& points, const EncodeOptions& options = {});
+// The same with the caller's index over the points.
+Result<Encoding> encode_points(const PointIndex& points, const EncodeOptions& options = {});
 
 // Bytes of the file prefix a client needs for levels 0..level: the end of
 // that level's chunk (level 0: the end of the control-mesh chunk).
