@@ -245,8 +245,6 @@ CarvingShape carving_shape(const CellGrid& g) {
   return out;
 }
 
-int choose_grid(const PointCloud& pc, int max_grid) { return choose_carving(pc, PointIndex(pc), max_grid).stats.grid; }
-
 CarvingChoice choose_carving(const PointCloud& pc, const PointIndex& index, int max_grid) {
   // "Closed" is tested on the carving itself.  Grids are stepped finer, from
   // cells of two spacings down to one (the spacing: the 99th percentile of

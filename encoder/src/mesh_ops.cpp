@@ -17,6 +17,16 @@ V3 pos(const TriangleMesh& m, uint32_t v) { return {m.positions[3 * v], m.positi
 V3 sub(V3 a, V3 b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
 V3 cross(V3 a, V3 b) { return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]}; }
 double dot(V3 a, V3 b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+// The mean of v's neighbours' positions (false: v has none).
+bool neighbour_mean(const TriangleMesh& m, const Adjacency& adj, uint32_t v, float out[3]) {
+  const uint32_t deg = adj.offset[v + 1] - adj.offset[v];
+  if (deg == 0) return false;
+  double sum[3] = {0, 0, 0};
+  for (uint32_t j = adj.offset[v]; j < adj.offset[v + 1]; ++j)
+    for (int a = 0; a < 3; ++a) sum[a] += m.positions[3 * size_t{adj.index[j]} + a];
+  for (int a = 0; a < 3; ++a) out[a] = static_cast<float>(sum[a] / deg);
+  return true;
+}
 V3 face_normal(const TriangleMesh& m, size_t f) {
   const V3 a = pos(m, m.triangles[3 * f]), b = pos(m, m.triangles[3 * f + 1]), c = pos(m, m.triangles[3 * f + 2]);
   return cross(sub(b, a), sub(c, a));
@@ -153,12 +163,10 @@ size_t untangle_folds(TriangleMesh& m, int rounds) {
       ring.push_back(v);
       for (uint32_t i = adj.offset[v]; i < adj.offset[v + 1]; ++i) ring.push_back(adj.index[i]);
     }
-    for (uint32_t v : ring) {
-      double avg[3] = {0, 0, 0};
-      const uint32_t deg = std::max<uint32_t>(1, adj.offset[v + 1] - adj.offset[v]);
-      for (uint32_t i = adj.offset[v]; i < adj.offset[v + 1]; ++i)
-        for (int a = 0; a < 3; ++a) avg[a] += m.positions[3 * adj.index[i] + a];
-      for (int a = 0; a < 3; ++a) m.positions[3 * v + a] = static_cast<float>(avg[a] / deg);
+    for (uint32_t v : ring) {  // in place: later vertices see earlier moves
+      float to[3];
+      if (neighbour_mean(m, adj, v, to))
+        for (int a = 0; a < 3; ++a) m.positions[3 * size_t{v} + a] = to[a];
     }
   }
   return met;
@@ -348,17 +356,10 @@ size_t relax_self_intersections(TriangleMesh& m, int rounds) {
     const std::vector<uint32_t> verts = corners_of(m, crossing);
     // Jacobi: every listed vertex goes to its neighbours' mean as they were.
     std::vector<float> to(3 * verts.size(), 0.0f);
-    for (size_t i = 0; i < verts.size(); ++i) {
-      const uint32_t v = verts[i];
-      const uint32_t deg = adj.offset[v + 1] - adj.offset[v];
-      if (deg == 0) continue;
-      double sum[3] = {0, 0, 0};
-      for (uint32_t j = adj.offset[v]; j < adj.offset[v + 1]; ++j)
-        for (int a = 0; a < 3; ++a) sum[a] += m.positions[3 * size_t{adj.index[j]} + a];
-      for (int a = 0; a < 3; ++a) to[3 * i + a] = static_cast<float>(sum[a] / deg);
-    }
+    std::vector<uint8_t> has(verts.size(), 0);
+    for (size_t i = 0; i < verts.size(); ++i) has[i] = neighbour_mean(m, adj, verts[i], &to[3 * i]);
     for (size_t i = 0; i < verts.size(); ++i)
-      if (adj.offset[verts[i] + 1] > adj.offset[verts[i]])
+      if (has[i])
         for (int a = 0; a < 3; ++a) m.positions[3 * size_t{verts[i]} + a] = to[3 * i + a];
     moved += verts.size();
   }

@@ -50,7 +50,6 @@ TEST_CASE("control meshes of shapes with known genus: closed, manifold, right co
     // Shrink-wrapping pulled the shell onto the points.
     CHECK(st.wrap_stats.mean_distance < 0.25 * st.cells.cell);
     // The carving the grid search handed over is carve()'s at that grid.
-    CHECK(st.carving.grid == choose_grid(pc));
     CarvingStats again;
     const CellGrid fresh = carve(pc, st.carving.grid, &again);
     CHECK(fresh.n == st.cells.n);

@@ -49,14 +49,12 @@ CarvingShape carving_shape(const CellGrid& g);
 
 class PointIndex;
 
-// The finest grid whose carving does not leak into the inside: grids are
+// The finest grid whose carving does not leak into the inside, and its
+// carving as carve() makes it (the search carved it already): grids are
 // stepped finer from cells of two point spacings until the enclosed volume
 // collapses, the solid's topology tears or it needs patching (see
-// cell_carving.cpp); between 8 and max_grid.
-int choose_grid(const PointCloud& points, int max_grid = 256);
-
-// The same choice with the carving of the chosen grid, as carve() makes it
-// (the search carved it already).  `index` must be built on `points`.
+// cell_carving.cpp); between 8 and max_grid.  `index` must be built on
+// `points`.
 struct CarvingChoice {
   CellGrid cells;
   CarvingStats stats;  // stats.grid is the chosen grid

@@ -17,7 +17,7 @@
 namespace dbss {
 
 struct ControlMeshOptions {
-  int grid = 0;                // cells along the longest side; 0 = choose_grid()
+  int grid = 0;                // cells along the longest side; 0 = choose_carving()
   uint32_t control_faces = 0;  // 0 = default_control_faces()
   ShrinkWrapOptions shrink_wrap;
   // Called with a stage's name as it starts (for progress display); may be empty.
