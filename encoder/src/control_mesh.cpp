@@ -86,7 +86,7 @@ Result<ControlMeshStages> build_control_mesh(const PointIndex& index, const Cont
   s.untangled = untangle_folds(s.control);
   // Collapses can make distant sheets cross; projection below keeps the
   // mesh free of crossings only if it starts free of them.
-  s.untangled += relax_self_intersections(s.control);
+  s.relaxed = relax_self_intersections(s.control);
   const std::vector<float> before = s.control.positions;
   // A vertex whose move was refused may go once its neighbours have moved.
   s.projection_skipped = project_to_points(s.control, index);

@@ -40,8 +40,9 @@ struct ControlMeshStages {
   MeshInfo shell_info;
   ShrinkWrapStats wrap_stats;
   SimplifyStats simplify_stats;
-  size_t projection_skipped = 0;  // control vertices left off the points to avoid a fold
+  size_t projection_skipped = 0;  // control vertices left off the points (a fold), plus moves undone (a crossing)
   size_t untangled = 0;           // folded edges the simplification left, smoothed out before projection
+  size_t relaxed = 0;             // vertex moves that cleared crossings the simplification left
   StageTimes seconds;
 };
 
