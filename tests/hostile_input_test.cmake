@@ -1,7 +1,8 @@
 # One hostile input to the dbss command per CTest entry (issue: "one test
 # each"): the command must exit 1 with a message naming the file and what is
 # wrong, within the time CTest allows, and leave no output behind.
-# Invoked with -DDBSS, -DWORK, -DCASE.
+# Invoked with -DDBSS, -DWORK, -DCASE; every case here must also be listed
+# in tests/CMakeLists.txt, which makes the CTest entries.
 file(REMOVE_RECURSE ${WORK}/${CASE})
 set(dir ${WORK}/${CASE})
 file(MAKE_DIRECTORY ${dir})
