@@ -27,12 +27,18 @@ constexpr const char* kHelpHead =
     "  -o, --output FILE      the .dbss to write (replaced atomically)\n"
     ;
 constexpr const char* kHelpTail =
+    "  --strict               fail (exit 1, nothing written) when the self-check\n"
+    "                         finds the surface does not match the points\n"
     "  --dump-stages DIR      also write every stage as an OBJ into DIR:\n"
     "                         occupied cells, carved cells, triangulated shell,\n"
     "                         shrink-wrapped, simplified, control mesh\n"
     "\n"
-    "Prints per-stage times and sizes.  Exit status: 0 written, 1 bad input or\n"
-    "usage, 2 internal error.\n";
+    "Prints per-stage times and sizes, then a self-check of the result against\n"
+    "the points: any figure out of bounds (components, clamped displacements,\n"
+    "surface with no points near, distance to the points, outliers dropped) is\n"
+    "a warning on stderr, also recorded in the file's meta chunk.\n"
+    "Exit status: 0 written, 1 bad input or usage (or a warning under\n"
+    "--strict), 2 internal error.\n";
 
 std::string help() { return std::string(kHelpHead) + kEncodeOptionsHelp + kHelpTail; }
 
@@ -45,6 +51,7 @@ int usage(const std::string& message) {
 
 int run_encode(const std::vector<std::string_view>& args) {
   std::string input, output, dump;
+  bool strict = false;
   EncodeOptions options;
   for (size_t i = 0; i < args.size(); ++i) {
     const std::string_view a = args[i];
@@ -60,6 +67,8 @@ int run_encode(const std::vector<std::string_view>& args) {
     } else if (a == "-o" || a == "--output") {
       if (i + 1 >= args.size()) return usage("-o needs a file name");
       output = args[++i];
+    } else if (a == "--strict") {
+      strict = true;
     } else if (a == "--dump-stages") {
       if (i + 1 >= args.size()) return usage("--dump-stages needs a directory");
       dump = args[++i];
@@ -109,6 +118,13 @@ int run_encode(const std::vector<std::string_view>& args) {
   }
   const Encoding& e = encoding.value();
   const ControlMeshStages& st = e.stages;
+  for (const ScanWarning& w : e.check.warnings)
+    std::fprintf(stderr, "dbss encode: %s: warning (%s): %s\n", input.c_str(), w.code.c_str(), w.message.c_str());
+  if (strict && !e.check.warnings.empty()) {
+    std::fprintf(stderr, "dbss encode: %s: %zu warning(s) under --strict; %s not written\n", input.c_str(),
+                 e.check.warnings.size(), output.c_str());
+    return 1;
+  }
   if (Status s = format::write_file_atomic(output, e.bytes); !s.ok()) {
     std::fprintf(stderr, "dbss encode: %s\n", s.message().c_str());
     return 1;
@@ -136,6 +152,10 @@ int run_encode(const std::vector<std::string_view>& args) {
                 m ? std::to_string(m->triangle_count()).c_str() : "-", notes.c_str());
   };
   row("read points", read_s, nullptr, std::to_string(pc.size()) + " points");
+  if (options.outliers.enabled)
+    row("outliers", 0, nullptr,
+        std::to_string(e.outliers.isolated) + " isolated points dropped, " + std::to_string(e.outliers.cluster_points) +
+            " in " + std::to_string(e.outliers.clusters_dropped) + " small cluster(s) of " + std::to_string(e.outliers.clusters));
   row("choose grid", st.seconds.grid, nullptr, "grid " + std::to_string(st.carving.grid) + (options.control.grid ? " (given)" : " (automatic)"));
   row("cell carving", st.seconds.carve, nullptr,
       std::to_string(st.carving.occupied) + " occupied, " + std::to_string(st.carving.solid) + " solid, " +
@@ -149,6 +169,7 @@ int run_encode(const std::vector<std::string_view>& args) {
   if (st.wrap_stats.untangled) wrap_notes += ", " + std::to_string(st.wrap_stats.untangled) + " folded edges smoothed";
   if (st.wrap_stats.undone) wrap_notes += ", " + std::to_string(st.wrap_stats.undone) + " moves undone (triangles crossed)";
   row("shrink-wrapping", st.seconds.shrink_wrap, &st.wrapped, wrap_notes);
+  row("surface", 0, nullptr, st.surface_reason);
   row("QEM simplification", st.seconds.simplify, &st.simplified, "");
   row("projection", st.seconds.project, &st.control, std::to_string(st.projection_skipped) + " vertices kept off the points");
   row("Draco", e.seconds.draco, &e.control, std::to_string(e.contents.control_mesh.size()) + " bytes of Draco, " + std::to_string(options.control_bits) + "-bit positions");
@@ -159,13 +180,14 @@ int run_encode(const std::vector<std::string_view>& args) {
     // Quality, relative to the diagonal: the points' mean distance to each
     // level's surface, and each level's vertices' mean distance to the
     // surface of the points (a plane through their 8 nearest points).
-    const PointIndex index(pc);
+    // Against the points the surface was built from (outliers dropped).
+    const PointIndex index(e.points);
     std::printf("\n%-5s %9s %9s %10s %11s %9s %8s %11s %11s\n", "level", "odd", "vertices", "step", "clamped", "bytes",
                 "bits/odd", "pts->surf", "surf->pts");
     for (uint32_t l = 0; l <= options.levels; ++l) {
       PointCloud mesh_pts;
       mesh_pts.xyz = e.levels.positions[l];
-      double to_mesh = points_to_mesh(pc.xyz, {e.levels.positions[l], e.levels.triangles[l]}).mean;
+      double to_mesh = points_to_mesh(e.points.xyz, {e.levels.positions[l], e.levels.triangles[l]}).mean;
       double to_pts = vertices_to_points_surface(mesh_pts.xyz, index).mean;
       to_mesh /= e.diagonal;
       to_pts /= e.diagonal;
@@ -181,6 +203,16 @@ int run_encode(const std::vector<std::string_view>& args) {
       }
     }
   }
+  const ScanCheck& c = e.check;
+  char figures[256];
+  std::snprintf(figures, sizeof figures,
+                "%u component(s) for %u point cluster(s), %s%s%.2f%% clamped, %.2f%% of the surface without points near, "
+                "points %.2f spacings from the surface",
+                c.surface_components, c.point_clusters, c.open ? "open, " : "closed",
+                c.open ? (std::to_string(c.boundary_loops) + " boundary loop(s), ").c_str() : ", ", 100 * c.clamped_share,
+                100 * c.uncovered_share, c.spacing > 0 ? c.points_to_surface / c.spacing : 0.0);
+  std::printf("\nself-check: %s: %s\n", c.warnings.empty() ? "ok" : (std::to_string(c.warnings.size()) + " warning(s)").c_str(),
+              figures);
   return 0;
 }
 

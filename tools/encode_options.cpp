@@ -21,7 +21,12 @@ const char* const kEncodeOptionsHelp =
     "                         (default 1e-4: the step is 2E x diagonal)\n"
     "  --step S               quantization step in model units, instead of\n"
     "                         --error (every level)\n"
-    "  --effort N             zstd level for the displacements, 1..22 (default 19)\n";
+    "  --effort N             zstd level for the displacements, 1..22 (default 19)\n"
+    "  --surface MODE         closed, open or auto (default auto): closed bridges\n"
+    "                         holes in the scan, open keeps a boundary where the\n"
+    "                         points end; auto picks one and says why\n"
+    "  --keep-outliers        keep every point (default: isolated points and\n"
+    "                         clusters under 2% of the points are dropped)\n";
 
 bool parse_int(std::string_view s, long lo, long hi, long& out) {
   const auto r = std::from_chars(s.data(), s.data() + s.size(), out);
@@ -40,8 +45,12 @@ bool parse_double(std::string_view s, double& out) {
 OptionParse parse_encode_option(const std::vector<std::string_view>& args, size_t& i, EncodeOptions& o,
                                 std::string& error) {
   const std::string_view a = args[i];
+  if (a == "--keep-outliers") {
+    o.outliers.enabled = false;
+    return OptionParse::ok;
+  }
   const bool known = a == "--grid" || a == "--control-faces" || a == "--control-bits" || a == "--levels" ||
-                     a == "--error" || a == "--step" || a == "--effort";
+                     a == "--error" || a == "--step" || a == "--effort" || a == "--surface";
   if (!known) return OptionParse::not_mine;
   std::string_view v;
   if (i + 1 < args.size()) v = args[++i];
@@ -66,6 +75,11 @@ OptionParse parse_encode_option(const std::vector<std::string_view>& args, size_
   } else if (a == "--effort") {
     if (!parse_int(v, 1, 22, n)) return error = "--effort needs a whole number from 1 to 22", OptionParse::bad;
     o.effort = static_cast<int>(n);
+  } else if (a == "--surface") {
+    if (v == "auto") o.control.surface = SurfaceMode::automatic;
+    else if (v == "closed") o.control.surface = SurfaceMode::closed;
+    else if (v == "open") o.control.surface = SurfaceMode::open;
+    else return error = "--surface needs closed, open or auto", OptionParse::bad;
   } else if (a == "--step") {
     if (!parse_double(v, x) || !(x > 0 && x < 1e30)) return error = "--step needs a positive number", OptionParse::bad;
     o.step = x;

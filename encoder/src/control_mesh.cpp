@@ -1,9 +1,13 @@
 #include "dbss/encoder/control_mesh.h"
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <cstdio>
 #include <string>
 
 #include "dbss/encoder/mesh_ops.h"
+#include "dbss/encoder/open_surface.h"
 #include "dbss/encoder/point_index.h"
 #include "dbss/encoder/projection.h"
 #include "dbss/encoder/shell_mesh.h"
@@ -11,20 +15,114 @@
 namespace dbss {
 
 namespace {
+// Empty (inside) cells per occupied cell under which a carving is a slab
+// around a sheet rather than a solid: a closed scan at the chosen grid has
+// several (a sphere of 50 cells across about 4), a sheet none.
+constexpr double kThinCarving = 0.25;
+// Under `auto`, holes are bridged when the patches would cover less than
+// this share of the closed surface: a scan missing the side it stood on
+// needs around a tenth, a half sphere a third.
+constexpr double kMaxBridged = 0.2;
+
 using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
 Status check_stage(const TriangleMesh& m, const MeshInfo& want, const char* stage) {
   const MeshInfo got = mesh_info(m);
-  if (!got.manifold || !got.closed || got.components != want.components || got.genus != want.genus)
+  // The Euler characteristic with the components and closedness pins the
+  // genus of a closed surface, and genus plus boundary loops of an open one.
+  if (!got.manifold || got.closed != want.closed || got.components != want.components || got.euler != want.euler)
     return Status(ErrorCode::internal, std::string(stage) + " changed the topology: " + std::to_string(got.components) +
-                                           " components of genus " + std::to_string(got.genus) + " (manifold " +
+                                           " components, Euler characteristic " + std::to_string(got.euler) + " (manifold " +
                                            std::to_string(got.manifold) + ", closed " + std::to_string(got.closed) +
-                                           "), expected " + std::to_string(want.components) + " of genus " +
-                                           std::to_string(want.genus));
+                                           "), expected " + std::to_string(want.components) + " with " +
+                                           std::to_string(want.euler) + (want.closed ? ", closed" : ", open"));
   return {};
 }
+
+size_t count_state(const CellGrid& g, CellGrid::State a, CellGrid::State b) {
+  return static_cast<size_t>(std::count_if(g.state.begin(), g.state.end(), [&](uint8_t x) { return x == a || x == b; }));
+}
+
+std::string fmt(const char* f, double x) {
+  char b[64];
+  std::snprintf(b, sizeof b, f, x);
+  return b;
+}
+
+// The open-sheet path: one side of the carved slab, shrink-wrapped, trimmed
+// to the points, holes optionally closed.  Leaves the result in s.wrapped;
+// returns false (s untouched but for s.surface_reason) when the sheet does
+// not explain the points and the closed path should run instead.
+bool build_sheet(ControlMeshStages& s, const PointIndex& index, const ControlMeshOptions& o, double inside_share) {
+  const double cell = s.cells.cell;
+  const double spacing = point_spacing(index, 1, 0.5);
+  SheetCut cut = cut_to_sheet(s.shell, index, oriented_normals(index));
+  if (cut.sheet.triangle_count() == 0 || !mesh_info(cut.sheet).manifold) {
+    s.surface_reason = "closed: cutting the carved slab to one side failed";
+    return false;
+  }
+  // A carving that did not leak (a thin closed shape: a torus's tube, a
+  // plate) has one side only, all of it facing the points' normals.
+  if (o.surface != SurfaceMode::open && static_cast<double>(cut.removed) < 0.25 * static_cast<double>(s.shell.triangle_count())) {
+    s.surface_reason = "closed: the carving encloses " + fmt("%.2g", inside_share) +
+                       " empty cells per occupied one, but its shell faces the points from one side only";
+    return false;
+  }
+  TriangleMesh sheet = std::move(cut.sheet);
+  ShrinkWrapStats wrap = shrink_wrap(sheet, index, o.shrink_wrap);
+  // The slab's rim overhangs the last points by up to a cell or two.
+  const size_t trimmed = trim_unsupported(sheet, index, std::max(2 * spacing, 0.75 * cell));
+  if (sheet.triangle_count() == 0) {
+    s.surface_reason = "closed: no part of the one-sided sheet lies on the points";
+    return false;
+  }
+  // Does one side explain the points?  A thin closed part (a plate thinner
+  // than two cells) carves like a sheet too, but half its points then lie a
+  // plate's thickness away.
+  const double to_sheet = points_to_mesh(index.points().xyz, sheet).mean;
+  if (o.surface == SurfaceMode::automatic && to_sheet > 0.35 * cell) {
+    s.surface_reason = "closed: the carving encloses almost no volume, but one side of it leaves the points " +
+                       fmt("%.2g", to_sheet / cell) + " cells away on average (two sides close together)";
+    return false;
+  }
+  const double sheet_area = mesh_area(sheet);
+  TriangleMesh filled = sheet;
+  const HoleFill fill = fill_holes(filled, cell);
+  const double hole_share = fill.area / std::max(1e-300, fill.area + sheet_area);
+  bool close = o.surface == SurfaceMode::closed;
+  const std::string why_thin = "the carving encloses " + fmt("%.2g", inside_share) +
+                               " empty cells per occupied one (it leaks through gaps in the points)";
+  if (o.surface == SurfaceMode::automatic) {
+    // A few holes in an object's scan (the side it stood on) are closed; a
+    // patch whose boundary would need more than this to close stays open.
+    close = fill.loops > 0 && hole_share < kMaxBridged;
+    s.surface_reason = close ? "closed: " + why_thin + "; its " + std::to_string(fill.loops) + " hole(s), " +
+                                   fmt("%.1f", 100 * hole_share) + "% of the area, are bridged"
+                             : "open: " + why_thin + "; closing it would take " + fmt("%.0f", 100 * hole_share) +
+                                   "% of the area from no points";
+  } else if (close) {
+    s.surface_reason = "closed (asked): " + why_thin + "; " + std::to_string(fill.loops) + " hole(s), " +
+                       fmt("%.1f", 100 * hole_share) + "% of the area, bridged";
+  } else {
+    s.surface_reason = "open (asked)";
+  }
+  s.open = !close;
+  s.cut_triangles = cut.removed + trimmed;
+  s.bridged_area = close ? hole_share : 0;
+  s.wrap_stats = wrap;
+  s.wrapped = close ? std::move(filled) : std::move(sheet);
+  return true;
+}
 }  // namespace
+
+const char* surface_mode_name(SurfaceMode m) {
+  switch (m) {
+    case SurfaceMode::closed: return "closed";
+    case SurfaceMode::open: return "open";
+    default: return "auto";
+  }
+}
 
 Result<ControlMeshStages> build_control_mesh(const PointCloud& points, const ControlMeshOptions& o) {
   return build_control_mesh(PointIndex(points), o);
@@ -61,22 +159,46 @@ Result<ControlMeshStages> build_control_mesh(const PointIndex& index, const Cont
   s.shell_info = mesh_info(s.shell);
   s.seconds.triangulate = since(t);
 
-  stage("shrink-wrapping");
-  t = Clock::now();
-  s.wrapped = s.shell;
-  s.wrap_stats = shrink_wrap(s.wrapped, index, o.shrink_wrap);
-  s.seconds.shrink_wrap = since(t);
-  if (Status st = check_stage(s.wrapped, s.shell_info, "shrink-wrapping"); !st.ok()) return st;
+  // Open or closed: a carving that encloses next to no volume is a slab
+  // around a sheet of points (an open scan, or a closed one whose carving
+  // leaked through a hole).
+  const size_t occupied = count_state(s.cells, CellGrid::kOccupied, CellGrid::kOccupied);
+  const double inside_share =
+      static_cast<double>(count_state(s.cells, CellGrid::kInside, CellGrid::kFilled)) / std::max<size_t>(1, occupied);
+  bool sheet = false;
+  if (o.surface == SurfaceMode::open || inside_share < kThinCarving) {
+    stage("cutting the open sheet");
+    t = Clock::now();
+    sheet = build_sheet(s, index, o, inside_share);
+    s.seconds.shrink_wrap = since(t);
+    if (o.surface == SurfaceMode::open && !sheet)
+      return Status(ErrorCode::invalid_argument, "--surface open: " + s.surface_reason.substr(s.surface_reason.find(':') + 2));
+  } else {
+    s.surface_reason = std::string(o.surface == SurfaceMode::closed ? "closed (asked)" : "closed") +
+                       ": the carving encloses " + fmt("%.2g", inside_share) + " empty cells per occupied one";
+  }
+  if (!sheet) {
+    stage("shrink-wrapping");
+    t = Clock::now();
+    s.wrapped = s.shell;
+    s.wrap_stats = shrink_wrap(s.wrapped, index, o.shrink_wrap);
+    s.seconds.shrink_wrap = since(t);
+    if (Status st = check_stage(s.wrapped, s.shell_info, "shrink-wrapping"); !st.ok()) return st;
+  }
+  const MeshInfo wrapped_info = sheet ? mesh_info(s.wrapped) : s.shell_info;
 
   stage("simplifying");
   t = Clock::now();
+  // A sheet has one side where the slab's shell had two.
   const uint32_t target = o.control_faces ? o.control_faces
-                                          : default_control_faces(static_cast<uint32_t>(s.shell.triangle_count()), s.shell_info.genus);
+                                          : default_control_faces(static_cast<uint32_t>(sheet ? 2 * s.wrapped.triangle_count()
+                                                                                              : s.shell.triangle_count()),
+                                                                  wrapped_info.genus);
   auto simplified = simplify_mesh(s.wrapped, target, &s.simplify_stats);
   if (!simplified.ok()) return simplified.status();
   s.simplified = std::move(simplified).value();
   s.seconds.simplify = since(t);
-  if (Status st = check_stage(s.simplified, s.shell_info, "simplification"); !st.ok()) return st;
+  if (Status st = check_stage(s.simplified, wrapped_info, "simplification"); !st.ok()) return st;
 
   stage("projecting");
   t = Clock::now();
@@ -93,6 +215,19 @@ Result<ControlMeshStages> build_control_mesh(const PointIndex& index, const Cont
   for (int again = 0; again < 3 && s.projection_skipped > 0; ++again) s.projection_skipped = project_to_points(s.control, index);
   // Projection checks folds only locally; on thin parts a vertex can still
   // pass through the opposite side.
+  if (s.bridged_area > 0) {
+    // A bridged hole has no points to project onto: its vertices stay on
+    // the membrane (their nearest point is the hole's rim).
+    const double reach = 1.5 * s.cells.cell;
+    for (size_t v = 0; v < s.control.vertex_count(); ++v) {
+      const float* p = &before[3 * v];
+      const uint32_t c = index.nearest(p);
+      double d2 = 0;
+      for (int a = 0; a < 3; ++a) d2 += std::pow(p[a] - double{points.xyz[3 * c + a]}, 2);
+      if (d2 > reach * reach)
+        for (int a = 0; a < 3; ++a) s.control.positions[3 * v + a] = p[a];
+    }
+  }
   s.projection_skipped += undo_self_intersections(s.control, before);
   s.seconds.project = since(t);
   return s;

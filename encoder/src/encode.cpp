@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <memory>
 
 #include "dbss/decoder/control_mesh.h"
 #include "dbss/decoder/topology.h"
@@ -24,13 +25,21 @@ Result<Encoding> encode_points(const PointCloud& pc, const EncodeOptions& o) {
   return encode_points(PointIndex(pc), o);
 }
 
-Result<Encoding> encode_points(const PointIndex& index, const EncodeOptions& o) {
-  const PointCloud& pc = index.points();
+Result<Encoding> encode_points(const PointIndex& input_index, const EncodeOptions& o) {
   if (o.control_bits < 8 || o.control_bits > 30) return Status(ErrorCode::invalid_argument, "control bits must be 8..30");
   if (o.levels > format::kMaxLevelsInFormat) return Status(ErrorCode::invalid_argument, "too many levels");
-  if (pc.size() == 0) return Status(ErrorCode::invalid_argument, "no points");
+  if (input_index.points().size() == 0) return Status(ErrorCode::invalid_argument, "no points");
   Encoding e;
   auto t = Clock::now();
+  // Outliers go before anything is built on the points; a second index only
+  // when some were dropped.  `e.points` moves with `e` on return, after
+  // `cleaned` (which refers to it) is gone.
+  if (o.on_progress && o.outliers.enabled) o.on_progress("removing outliers");
+  e.points = remove_outliers(input_index, o.outliers, &e.outliers);
+  std::unique_ptr<PointIndex> cleaned;
+  if (e.points.size() != input_index.points().size()) cleaned = std::make_unique<PointIndex>(e.points);
+  const PointIndex& index = cleaned ? *cleaned : input_index;
+  const PointCloud& pc = index.points();
   ControlMeshOptions co = o.control;
   if (!co.on_stage && o.on_progress) co.on_stage = [&](const char* s) { o.on_progress(s); };
   auto stages = build_control_mesh(index, co);
@@ -96,6 +105,19 @@ Result<Encoding> encode_points(const PointIndex& index, const EncodeOptions& o) 
   c.metadata = {{"encoder", "dbss " + (o.encoder_version.empty() ? std::string("unknown") : o.encoder_version)},
                 {"encoder.params", params}};
   if (!o.source_name.empty()) c.metadata.push_back({"source", o.source_name});
+  // What a reader of the file should know about how far to trust it.
+  e.check = check_scan(e, index);
+  c.metadata.push_back({"surface", e.stages.surface_reason});
+  if (e.outliers.points_in != e.outliers.kept())
+    c.metadata.push_back({"outliers", std::to_string(e.outliers.isolated) + " isolated points and " +
+                                          std::to_string(e.outliers.cluster_points) + " points in " +
+                                          std::to_string(e.outliers.clusters_dropped) + " small clusters dropped of " +
+                                          std::to_string(e.outliers.points_in)});
+  if (e.stages.bridged_area > 0) {
+    std::snprintf(error_text, sizeof error_text, "%.4f", e.stages.bridged_area);
+    c.metadata.push_back({"unsupported.bridged_area_share", error_text});
+  }
+  for (const ScanWarning& w : e.check.warnings) c.metadata.push_back({"warning." + w.code, w.message});
   auto bytes = format::serialize(c, {o.effort});
   if (!bytes.ok()) return bytes.status();
   e.bytes = std::move(bytes).value();

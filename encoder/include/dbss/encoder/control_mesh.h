@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <string>
 
 #include "dbss/decoder/mesh.h"
 #include "dbss/encoder/cell_carving.h"
@@ -16,8 +17,16 @@
 
 namespace dbss {
 
+// Whether the points enclose a volume.  closed: a closed surface, holes in
+// the sampling bridged; open: a surface with a boundary where the points
+// end (a scan seen from one side, a patch); automatic: decided from the
+// data (see ControlMeshStages::surface_reason).
+enum class SurfaceMode { automatic, closed, open };
+const char* surface_mode_name(SurfaceMode m);
+
 struct ControlMeshOptions {
   int grid = 0;                // cells along the longest side; 0 = choose_carving()
+  SurfaceMode surface = SurfaceMode::automatic;
   uint32_t control_faces = 0;  // 0 = default_control_faces()
   ShrinkWrapOptions shrink_wrap;
   // Called with a stage's name as it starts (for progress display); may be empty.
@@ -31,6 +40,10 @@ struct StageTimes {
 };
 
 struct ControlMeshStages {
+  bool open = false;           // the surface keeps a boundary (SurfaceMode::open, or chosen so)
+  std::string surface_reason;  // why closed or open, one line for people
+  double bridged_area = 0;     // closed: share of the area bridged over holes (no points support it), 0..1
+  size_t cut_triangles = 0;    // open: shell triangles removed (the far side of the sheet, and those with no points near)
   CarvingStats carving;
   CellGrid cells;
   TriangleMesh shell;       // triangulated air faces

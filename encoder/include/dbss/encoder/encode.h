@@ -11,6 +11,8 @@
 #include "dbss/decoder/mesh.h"
 #include "dbss/encoder/control_mesh.h"
 #include "dbss/encoder/levels.h"
+#include "dbss/encoder/outliers.h"
+#include "dbss/encoder/scan_check.h"
 #include "dbss/encoder/point_index.h"
 #include "dbss/encoder/point_input.h"
 #include "dbss/format/container.h"
@@ -20,6 +22,7 @@
 namespace dbss {
 
 struct EncodeOptions {
+  OutlierOptions outliers;  // removed before carving unless outliers.enabled is false
   ControlMeshOptions control;
   int control_bits = 16;  // Draco position bits of the control mesh, 8..30
   uint32_t levels = 3;    // displacement levels, 0..kMaxLevelsInFormat
@@ -40,11 +43,14 @@ struct EncodeTimes {
 };
 
 struct Encoding {
+  PointCloud points;              // the points the surface was built from (after outlier removal)
+  OutlierStats outliers;
   ControlMeshStages stages;
   TriangleMesh control;           // the Draco-decoded control mesh the file holds
   format::FileContents contents;  // what the file holds
   std::vector<uint8_t> bytes;     // the serialized file
   std::vector<format::TocEntry> toc;  // its chunks, in file order
+  ScanCheck check;                // the result against the points (warnings recorded in `meta`)
   EncodedLevels levels;           // per level: reconstruction (bit-identical to the decoder's) and stats
   double diagonal = 0;            // of the points' bounding box, model units
   double error = 0;               // the error target actually used (from `step` when given)

@@ -1,0 +1,67 @@
+// Open surfaces (a scan seen from one side, a patch of an object): the
+// carved shell of a sheet of points is a thin closed slab whose two sides
+// both lie on the points.  These steps keep one side and give the surface a
+// boundary where the points end.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <vector>
+
+#include "dbss/decoder/mesh.h"
+#include "dbss/encoder/point_index.h"
+
+namespace dbss {
+
+// Unit point normals from the least-squares plane of each point's k nearest
+// points, oriented consistently along a minimum spanning tree of the
+// k-nearest-neighbour graph (edges cost 1 - |n_i . n_j|, so orientation is
+// passed across flat, well-sampled regions first), then each cluster of the
+// tree flipped so most normals point away from its centroid.
+std::vector<std::array<float, 3>> oriented_normals(const PointIndex& index, size_t k = 12);
+
+struct SheetCut {
+  TriangleMesh sheet;     // the kept side, an oriented manifold with boundary (vertices renumbered)
+  size_t removed = 0;     // shell triangles removed
+};
+
+// Keeps the shell triangles whose outward normal agrees with the oriented
+// normal of the nearest point, then cleans the choice up: kept islands under
+// 1% of the kept triangles go, dropped islands under 1% that only kept
+// triangles surround come back, triangles with two or three boundary edges
+// go, and at a vertex where the kept triangles form several fans only the
+// largest fan stays.  `shell` must be a closed oriented manifold.
+SheetCut cut_to_sheet(const TriangleMesh& shell, const PointIndex& index, const std::vector<std::array<float, 3>>& normals);
+
+// Removes triangles whose three corners and centroid are all farther than
+// `reach` from every point (the rim of the slab overhanging the points),
+// then the same clean-up as cut_to_sheet.  Returns how many went.
+size_t trim_unsupported(TriangleMesh& sheet, const PointIndex& index, double reach);
+
+// The clean-up alone: drops triangles with two or more boundary edges and
+// all but the largest fan at any vertex with several, repeatedly, then
+// unreferenced vertices.  Returns how many triangles went.
+size_t clean_sheet(TriangleMesh& m);
+
+// Boundary loops of an oriented manifold, each as its vertices in the order
+// of the boundary half-edges (the triangle on the left of the walk).
+std::vector<std::vector<uint32_t>> boundary_loops(const TriangleMesh& m);
+
+struct HoleFill {
+  size_t loops = 0;            // holes closed
+  size_t triangles = 0;        // triangles added
+  double area = 0;             // their area, model units^2
+  std::vector<uint32_t> added_vertices;  // the new vertices (no points support them)
+};
+
+// Closes every boundary loop with a membrane: concentric rings of about
+// `edge` spacing from the loop to its centroid, then smoothed (each new
+// vertex to its neighbours' mean, the loop held still), so the patch is as
+// flat as the loop lets it be.  The result is closed and keeps the
+// orientation.
+HoleFill fill_holes(TriangleMesh& m, double edge);
+
+// Surface area, model units^2.
+double mesh_area(const TriangleMesh& m);
+
+}  // namespace dbss

@@ -1,0 +1,58 @@
+// Scan clean-up before carving: points far from the surface their
+// neighbours sample (a scanner's stray returns, dust, reflections) and small
+// clusters of points away from the main object.  Each becomes a tiny closed
+// surface, or a spike, once carved, so they go first.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "dbss/encoder/point_index.h"
+#include "dbss/encoder/point_input.h"
+
+namespace dbss {
+
+struct OutlierOptions {
+  bool enabled = true;  // false: keep every point (`--keep-outliers`, data known to be clean)
+  // A point is isolated when its mean distance to its k nearest points is
+  // over `isolation` times the median of the same figure at those k points:
+  // a ratio to the neighbourhood rather than to the whole cloud, so the
+  // sparse side of an uneven scan is not taken for outliers.
+  uint32_t k = 8;
+  double isolation = 5.0;
+  // Clusters: points linked when closer than `link` times the cloud's
+  // 99th-percentile spacing (distance to the nearest point), about the gap
+  // the carving bridges, so a cluster is what would carve into a separate
+  // solid; one is dropped when it holds under `min_cluster_share` of the
+  // points.  The high percentile keeps the sparse side of an uneven scan in
+  // one piece.
+  double link = 3.0;
+  double min_cluster_share = 0.02;
+};
+
+struct OutlierStats {
+  size_t points_in = 0;
+  size_t isolated = 0;          // points dropped as isolated
+  size_t clusters = 0;          // clusters found among the rest
+  size_t clusters_dropped = 0;  // of them, dropped as too small
+  size_t cluster_points = 0;    // points in the dropped clusters
+  size_t kept() const { return points_in - isolated - cluster_points; }
+};
+
+// The points that survive both tests, in input order (normals kept along
+// when present).  With options.enabled false, a copy of `points`.  `index`
+// must be built on `points`.  Never returns fewer than 4 points unless given
+// fewer: if the tests would leave fewer, nothing is dropped.
+PointCloud remove_outliers(const PointIndex& index, const OutlierOptions& options = {}, OutlierStats* stats = nullptr);
+
+// Connected clusters of the points: two points are in one cluster when a
+// chain of points, each within `radius` of the next, joins them.  Returns a
+// cluster id per point (0..count-1, ids ordered by first point) and the
+// count through `count`.
+std::vector<uint32_t> point_clusters(const PointIndex& index, double radius, uint32_t* count);
+
+// The radius remove_outliers() links clusters at, for `options`.
+double cluster_radius(const PointIndex& index, const OutlierOptions& options = {});
+
+}  // namespace dbss

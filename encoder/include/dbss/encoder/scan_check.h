@@ -1,0 +1,39 @@
+// The encoder's self-check: the finished encoding against the points it came
+// from, so a broken surface is never written without saying so.  Each figure
+// outside its bound becomes a warning naming the figure and its likely cause;
+// `dbss encode` prints them, records them in the file's `meta` chunk and,
+// under --strict, fails with nothing written.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "dbss/encoder/point_index.h"
+
+namespace dbss {
+
+struct Encoding;
+
+struct ScanWarning {
+  std::string code;     // stable short name, e.g. "clamped" (used in `meta` and tests)
+  std::string message;  // one line for people: the figure, the bound, the likely cause
+};
+
+struct ScanCheck {
+  double spacing = 0;             // the points' median distance to their nearest point, model units
+  uint32_t surface_components = 0;  // of the finest level's surface
+  uint32_t point_clusters = 0;      // of the points, linked at a few spacings
+  bool open = false;                // the surface has a boundary
+  uint32_t boundary_loops = 0;
+  double clamped_share = 0;       // of the finest level's displacements, 0..1
+  double uncovered_share = 0;     // of the finest level's surface area, farther than a few spacings from any point, 0..1
+  double points_to_surface = 0;   // mean, model units, at the finest level
+  std::vector<ScanWarning> warnings;
+};
+
+// Checks `e` (its finest level, or the control mesh with no levels) against
+// the points `index` was built on (the points the encoder used).
+ScanCheck check_scan(const Encoding& e, const PointIndex& index);
+
+}  // namespace dbss

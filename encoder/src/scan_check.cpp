@@ -1,0 +1,117 @@
+#include "dbss/encoder/scan_check.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "dbss/encoder/encode.h"
+#include "dbss/encoder/mesh_ops.h"
+#include "dbss/encoder/open_surface.h"
+#include "dbss/encoder/outliers.h"
+#include "dbss/encoder/shell_mesh.h"
+
+namespace dbss {
+
+namespace {
+
+// Bounds.  Displacements clamp when the control mesh is farther from the
+// points than the level's range; a few percent happen at creases, more means
+// the surface is not where the points are.
+constexpr double kMaxClamped = 0.02;
+// Surface with no point within kUncoveredReach spacings: a dense scan leaves
+// none; an open scan closed over, or a leak, leaves much.
+constexpr double kUncoveredReach = 3;
+constexpr double kMaxUncovered = 0.05;
+// Points' mean distance to the surface, in median spacings.
+constexpr double kMaxDistance = 3;
+// Points dropped as outliers before a warning.
+constexpr double kMaxDropped = 0.05;
+
+std::string fmt(const char* f, double x) {
+  char b[96];
+  std::snprintf(b, sizeof b, f, x);
+  return b;
+}
+
+}  // namespace
+
+ScanCheck check_scan(const Encoding& e, const PointIndex& index) {
+  ScanCheck c;
+  const PointCloud& pc = index.points();
+  if (pc.size() == 0) return c;
+  c.spacing = point_spacing(index, 1, 0.5);
+  TriangleMesh finest;
+  if (!e.levels.positions.empty()) {
+    finest.positions = e.levels.positions.back();
+    finest.triangles = e.levels.triangles.back();
+  } else {
+    finest = e.control;
+  }
+  const MeshInfo info = mesh_info(finest);
+  c.surface_components = info.components;
+  c.open = !info.closed;
+  c.boundary_loops = c.open ? static_cast<uint32_t>(boundary_loops(finest).size()) : 0;
+  // Clusters as the outlier pass counts them; tiny ones are not objects.
+  uint32_t count = 0;
+  const std::vector<uint32_t> cluster = point_clusters(index, cluster_radius(index), &count);
+  std::vector<size_t> size(count, 0);
+  for (uint32_t id : cluster) ++size[id];
+  for (size_t s : size) c.point_clusters += static_cast<double>(s) >= 0.02 * static_cast<double>(pc.size());
+  if (!e.levels.stats.empty()) {
+    const LevelStats& last = e.levels.stats.back();
+    c.clamped_share = static_cast<double>(last.clamped) / static_cast<double>(std::max<size_t>(1, last.odd));
+  }
+  // Uncovered area: triangles whose centroid has no point near.
+  double total = 0, bare = 0;
+  const double reach2 = std::pow(kUncoveredReach * c.spacing, 2);
+  for (size_t t = 0; t < finest.triangle_count(); ++t) {
+    const float* a = &finest.positions[3 * finest.triangles[3 * t]];
+    const float* b = &finest.positions[3 * finest.triangles[3 * t + 1]];
+    const float* d = &finest.positions[3 * finest.triangles[3 * t + 2]];
+    float centre[3];
+    for (int k = 0; k < 3; ++k) centre[k] = (a[k] + b[k] + d[k]) / 3.0f;
+    const double u[3] = {double{b[0]} - a[0], double{b[1]} - a[1], double{b[2]} - a[2]};
+    const double v[3] = {double{d[0]} - a[0], double{d[1]} - a[1], double{d[2]} - a[2]};
+    const double area = 0.5 * std::sqrt(std::pow(u[1] * v[2] - u[2] * v[1], 2) + std::pow(u[2] * v[0] - u[0] * v[2], 2) +
+                                        std::pow(u[0] * v[1] - u[1] * v[0], 2));
+    const uint32_t p = index.nearest(centre);
+    double d2 = 0;
+    for (int k = 0; k < 3; ++k) d2 += std::pow(centre[k] - double{pc.xyz[3 * p + k]}, 2);
+    total += area;
+    if (d2 > reach2) bare += area;
+  }
+  c.uncovered_share = total > 0 ? bare / total : 0;
+  c.points_to_surface = points_to_mesh(pc.xyz, finest).mean;
+
+  const auto warn = [&](const char* code, const std::string& message) { c.warnings.push_back({code, message}); };
+  const uint32_t level = static_cast<uint32_t>(e.levels.stats.size());
+  if (c.surface_components != c.point_clusters)
+    warn("components", "the surface has " + std::to_string(c.surface_components) + " component(s) where the points form " +
+                           std::to_string(c.point_clusters) +
+                           " cluster(s): parts merged or broken up (stray points, or a carving grid too fine or too coarse "
+                           "for the sampling; try --grid)");
+  if (c.clamped_share > kMaxClamped)
+    warn("clamped", fmt("%.1f%%", 100 * c.clamped_share) + " of level " + std::to_string(level) +
+                        " displacements clamped (bound " + fmt("%.0f%%", 100 * kMaxClamped) +
+                        "): the control mesh is far from the points, as where carving leaked through a hole or a sheet "
+                        "was closed over (try --surface open or --surface closed)");
+  if (c.uncovered_share > kMaxUncovered + e.stages.bridged_area)
+    warn("uncovered", fmt("%.1f%%", 100 * c.uncovered_share) + " of the surface has no point within " +
+                          fmt("%.0f", kUncoveredReach) + " point spacings (bound " + fmt("%.0f%%", 100 * kMaxUncovered) +
+                          (e.stages.bridged_area > 0 ? fmt(" plus the %.1f%% bridged over holes", 100 * e.stages.bridged_area) : "") +
+                          "): surface invented where nothing was scanned (holes, an open patch closed over, or stray points)");
+  if (c.spacing > 0 && c.points_to_surface > kMaxDistance * c.spacing)
+    warn("distance", "the points lie " + fmt("%.1f", c.points_to_surface / c.spacing) +
+                         " point spacings from the surface on average (bound " + fmt("%.0f", kMaxDistance) +
+                         "): parts of the scan are not represented (noise, thin parts, or a surface that missed them)");
+  if (e.outliers.points_in > 0) {
+    const double dropped = static_cast<double>(e.outliers.points_in - e.outliers.kept()) / e.outliers.points_in;
+    if (dropped > kMaxDropped)
+      warn("outliers", fmt("%.1f%%", 100 * dropped) + " of the points were dropped as outliers (bound " +
+                           fmt("%.0f%%", 100 * kMaxDropped) +
+                           "): a very noisy scan, or objects too small to keep (--keep-outliers keeps every point)");
+  }
+  return c;
+}
+
+}  // namespace dbss
