@@ -15,10 +15,14 @@
 namespace dbss {
 
 namespace {
-// Empty (inside) cells per occupied cell under which a carving is a slab
-// around a sheet rather than a solid: a closed scan at the chosen grid has
-// several (a sphere of 50 cells across about 4), a sheet none.
-constexpr double kThinCarving = 0.25;
+// Empty (inside) cells per occupied cell under which a carving may be a
+// slab around a sheet rather than a solid, so the one-sided cut is tried
+// (and kept only if it removes one of two sides): a sphere of 50 cells
+// across has about 4, a triple torus's tubes 0.7, a sheet none.  A torus
+// whose carving leaked through a hole into part of its tube had 0.3.
+constexpr double kMaybeLeaked = 1.0;
+// Share of the shell the cut must remove to count as a second side.
+constexpr double kLeakCut = 0.05;
 // Under `auto`, holes are bridged when the patches would cover less than
 // this share of the closed surface: a scan missing the side it stood on
 // needs around a tenth, a half sphere a third.
@@ -64,7 +68,12 @@ bool build_sheet(ControlMeshStages& s, const PointIndex& index, const ControlMes
   }
   // A carving that did not leak (a thin closed shape: a torus's tube, a
   // plate) has one side only, all of it facing the points' normals.
-  if (o.surface != SurfaceMode::open && static_cast<double>(cut.removed) < 0.25 * static_cast<double>(s.shell.triangle_count())) {
+  // (Or all of it facing away, should the normals' orientation be inside out.)
+  const double removed_share = static_cast<double>(cut.removed) / static_cast<double>(s.shell.triangle_count());
+  // The cut's own clean-up turns back the islands noise flips, so a shell
+  // that did not leak loses next to nothing; a leak into part of a torus's
+  // tube already cut a tenth.
+  if (o.surface != SurfaceMode::open && (removed_share < kLeakCut || removed_share > 1 - kLeakCut)) {
     s.surface_reason = "closed: the carving encloses " + fmt("%.2g", inside_share) +
                        " empty cells per occupied one, but its shell faces the points from one side only";
     return false;
@@ -166,7 +175,7 @@ Result<ControlMeshStages> build_control_mesh(const PointIndex& index, const Cont
   const double inside_share =
       static_cast<double>(count_state(s.cells, CellGrid::kInside, CellGrid::kFilled)) / std::max<size_t>(1, occupied);
   bool sheet = false;
-  if (o.surface == SurfaceMode::open || inside_share < kThinCarving) {
+  if (o.surface == SurfaceMode::open || inside_share < kMaybeLeaked) {
     stage("cutting the open sheet");
     t = Clock::now();
     sheet = build_sheet(s, index, o, inside_share);

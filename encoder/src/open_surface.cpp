@@ -380,8 +380,18 @@ HoleFill fill_holes(TriangleMesh& m, double edge) {
       }
       outer = std::move(inner);
     }
-    const uint32_t centre = add_vertex(c);
-    for (size_t i = 0; i < n; ++i) m.triangles.insert(m.triangles.end(), {outer[(i + 1) % n], outer[i], centre});
+    // The innermost ring is closed by a zig-zag strip rather than a fan: a
+    // fan's centre would take the loop's whole length as valence (the
+    // decoder allows 64).  Each triangle takes the ring's edges reversed.
+    size_t l = 0, r = n - 1;
+    while (r - l > 1) {
+      m.triangles.insert(m.triangles.end(), {outer[l + 1], outer[l], outer[r]});
+      ++l;
+      if (r - l > 1) {
+        m.triangles.insert(m.triangles.end(), {outer[l], outer[r], outer[r - 1]});
+        --r;
+      }
+    }
     ++out.loops;
   }
   out.triangles = m.triangle_count() - triangles_before;

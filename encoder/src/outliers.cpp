@@ -4,6 +4,8 @@
 #include <cmath>
 #include <numeric>
 
+#include "dbss/encoder/mesh_ops.h"
+
 namespace dbss {
 
 namespace {
@@ -21,6 +23,11 @@ struct Sets {
     if (a != b) parent[std::max(a, b)] = std::min(a, b);
   }
 };
+
+size_t used_count(const std::vector<uint32_t>& neighbours, size_t i, uint32_t k) {
+  return static_cast<size_t>(std::count_if(neighbours.begin() + i * k, neighbours.begin() + (i + 1) * k,
+                                           [](uint32_t j) { return j != UINT32_MAX; }));
+}
 
 double median(std::vector<double> v) {
   if (v.empty()) return 0;
@@ -100,7 +107,22 @@ PointCloud remove_outliers(const PointIndex& index, const OutlierOptions& o, Out
     for (size_t j = i * k; j < (i + 1) * k; ++j)
       if (neighbours[j] != UINT32_MAX) around.push_back(reach[neighbours[j]]);
     const double local = median(around);
-    if (local > 0 && reach[i] > o.isolation * local) {
+    if (!(local > 0)) continue;
+    bool isolated = reach[i] > o.isolation * local;
+    if (!isolated && used_count(neighbours, i, k) >= 5) {
+      // Near the surface a stray point still has surface points for
+      // neighbours, at a few spacings: it stands off their plane, where a
+      // surface point (even at a crease or on a thin wall) lies close to it.
+      uint32_t ids[64];
+      size_t m = 0;
+      for (size_t j = i * k; j < (i + 1) * k && m < 64; ++j)
+        if (neighbours[j] != UINT32_MAX) ids[m++] = neighbours[j];
+      const PointPlane plane = fit_plane(pc, ids, m);
+      double off = 0;
+      for (int a = 0; a < 3; ++a) off += (pc.xyz[3 * i + a] - plane.point[a]) * plane.normal[a];
+      isolated = std::abs(off) > o.off_plane * local;
+    }
+    if (isolated) {
       keep[i] = 0;
       ++s.isolated;
     }

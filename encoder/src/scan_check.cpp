@@ -63,7 +63,10 @@ ScanCheck check_scan(const Encoding& e, const PointIndex& index) {
   }
   // Uncovered area: triangles whose centroid has no point near.
   double total = 0, bare = 0;
-  const double reach2 = std::pow(kUncoveredReach * c.spacing, 2);
+  // Uneven scans have sparse stretches a few median spacings wide that are
+  // still surface: the reach is at least twice the sparse end's spacing.
+  const double reach = std::max(kUncoveredReach * c.spacing, 2 * point_spacing(index, 1, 0.99));
+  const double reach2 = reach * reach;
   for (size_t t = 0; t < finest.triangle_count(); ++t) {
     const float* a = &finest.positions[3 * finest.triangles[3 * t]];
     const float* b = &finest.positions[3 * finest.triangles[3 * t + 1]];
@@ -97,7 +100,7 @@ ScanCheck check_scan(const Encoding& e, const PointIndex& index) {
                         "was closed over (try --surface open or --surface closed)");
   if (c.uncovered_share > kMaxUncovered + e.stages.bridged_area)
     warn("uncovered", fmt("%.1f%%", 100 * c.uncovered_share) + " of the surface has no point within " +
-                          fmt("%.0f", kUncoveredReach) + " point spacings (bound " + fmt("%.0f%%", 100 * kMaxUncovered) +
+                          fmt("%.1f", reach / c.spacing) + " point spacings (bound " + fmt("%.0f%%", 100 * kMaxUncovered) +
                           (e.stages.bridged_area > 0 ? fmt(" plus the %.1f%% bridged over holes", 100 * e.stages.bridged_area) : "") +
                           "): surface invented where nothing was scanned (holes, an open patch closed over, or stray points)");
   if (c.spacing > 0 && c.points_to_surface > kMaxDistance * c.spacing)

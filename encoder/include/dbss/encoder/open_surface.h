@@ -55,7 +55,8 @@ struct HoleFill {
 };
 
 // Closes every boundary loop with a membrane: concentric rings of about
-// `edge` spacing from the loop to its centroid, then smoothed (each new
+// `edge` spacing from the loop towards its centroid, the innermost closed by
+// a zig-zag strip, then smoothed (each new
 // vertex to its neighbours' mean, the loop held still), so the patch is as
 // flat as the loop lets it be.  The result is closed and keeps the
 // orientation.

@@ -21,6 +21,9 @@ struct OutlierOptions {
   // sparse side of an uneven scan is not taken for outliers.
   uint32_t k = 8;
   double isolation = 5.0;
+  // Or when it lies farther than `off_plane` times that median from the
+  // least-squares plane of those k points.
+  double off_plane = 2.5;
   // Clusters: points linked when closer than `link` times the cloud's
   // 99th-percentile spacing (distance to the nearest point), about the gap
   // the carving bridges, so a cluster is what would carve into a separate
