@@ -59,7 +59,7 @@ TEST_CASE("keep_levels returns the same meshes") {
   }
 }
 
-TEST_CASE("a truncated file decodes its complete levels; counts must match the header") {
+TEST_CASE("a truncated file decodes its complete levels: counts must match the header") {
   const auto file = test::build_file(test::torus(10, 5), 3, 10, 0.01f);
   ProgressiveDecoder d;
   d.feed({file.data(), file.size() - 5});

@@ -1,9 +1,10 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
-#include <filesystem>
+#include <string>
 
 #include "../sampled_shapes.h"
+#include "../test_data.h"
 #include "dbss/encoder/cell_carving.h"
 #include "dbss/encoder/control_mesh.h"
 #include "dbss/encoder/mesh_ops.h"
@@ -89,13 +90,10 @@ TEST_CASE("cell carving keeps a deep concavity that a bounding-box shrink-wrap w
   CHECK(inside_mesh(wrapped.value(), gap));
 }
 
-TEST_CASE("bunny scan (libcgal-demo data, skipped when absent)") {
-  const std::string path = std::string(DBSS_SOURCE_DIR) + "/test-data/data/meshes/bunny00.off";
-  if (!std::filesystem::exists(path)) {
-    WARN("skipped: run scripts/fetch-test-data.sh for " << path);
-    return;
-  }
-  auto pc = read_points(path);
+TEST_CASE("bunny scan (libcgal-demo data, skipped when absent unless CI=true)") {
+  const auto path = test::scan_data("data/meshes/bunny00.off");
+  if (!path) return;
+  auto pc = read_points(*path);
   REQUIRE(pc.ok());
   auto r = build_control_mesh(pc.value());
   REQUIRE(r.ok());

@@ -1,12 +1,13 @@
-// The libcgal-demo scans end to end (skipped cleanly when
-// scripts/fetch-test-data.sh has not unpacked them): encode, decode every
-// level from the file's bytes, compare bit for bit, and hold the quality
-// targets.
+// The libcgal-demo scans end to end (skipped when scripts/fetch-test-data.sh
+// has not unpacked them, failed instead under CI=true; ../test_data.h):
+// encode, decode every level from the file's bytes, compare bit for bit,
+// and hold the quality targets.
 #include <catch2/catch.hpp>
 
 #include <cstring>
-#include <filesystem>
 #include <string>
+
+#include "../test_data.h"
 
 #include "dbss/decoder/progressive.h"
 #include "dbss/encoder/encode.h"
@@ -18,13 +19,10 @@ using namespace dbss;
 
 namespace {
 void encode_scan(const char* relative, int64_t genus, double max_mean) {
-  const std::string path = std::string(DBSS_SOURCE_DIR) + "/test-data/" + relative;
-  if (!std::filesystem::exists(path)) {
-    WARN("skipped: run scripts/fetch-test-data.sh for " << path);
-    return;
-  }
-  INFO(path);
-  auto pc = read_points(path);
+  const auto path = test::scan_data(relative);
+  if (!path) return;
+  INFO(*path);
+  auto pc = read_points(*path);
   REQUIRE(pc.ok());
   EncodeOptions o;
   o.levels = 3;

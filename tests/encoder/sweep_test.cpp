@@ -53,7 +53,7 @@ TEST_CASE("a real file cut at every offset decodes its complete levels exactly a
   }
 }
 
-TEST_CASE("every flipped bit of a real file is caught; all but framing bytes by a checksum") {
+TEST_CASE("every flipped bit of a real file is caught: all but framing bytes by a checksum") {
   const auto file = encoded_example();
   const format::Reader r = format::read_all(file);
   REQUIRE(r.complete());

@@ -49,7 +49,7 @@ Reader read(const Header& h, std::vector<RawChunk> body) {
 }
 }  // namespace
 
-TEST_CASE("assembled valid chunks read back; an unknown ancillary chunk is skipped") {
+TEST_CASE("assembled valid chunks read back, and an unknown ancillary chunk is skipped") {
   const Parts p = parts();
   CHECK(read(p.header, {p.ctrl, p.level1, p.level2, p.meta}).complete());
   const RawChunk extra{ChunkType('x', 't', 'r', 'a'), {1, 2, 3, 4, 5}};
