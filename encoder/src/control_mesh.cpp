@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 #include <string>
 
 #include "dbss/encoder/mesh_ops.h"
@@ -21,8 +22,14 @@ namespace {
 // across has about 4, a triple torus's tubes 0.7, a sheet none.  A torus
 // whose carving leaked through a hole into part of its tube had 0.3.
 constexpr double kMaybeLeaked = 1.0;
-// Share of the shell the cut must remove to count as a second side.
-constexpr double kLeakCut = 0.05;
+// Share of the shell behind the points (SheetCut::behind) that counts as a
+// second side.
+constexpr double kLeakCut = 0.01;
+// Mean distance, in median point spacings, from the points to a one-sided
+// sheet above which the sheet does not explain them.
+constexpr double kSheetFit = 1.5;
+// Boundary loops shorter than this many cells are closed even in open mode.
+constexpr double kPinhole = 8;
 // Under `auto`, holes are bridged when the patches would cover less than
 // this share of the closed surface: a scan missing the side it stood on
 // needs around a tenth, a half sphere a third.
@@ -59,42 +66,83 @@ std::string fmt(const char* f, double x) {
 // returns false (s untouched but for s.surface_reason) when the sheet does
 // not explain the points and the closed path should run instead.
 bool build_sheet(ControlMeshStages& s, const PointIndex& index, const ControlMeshOptions& o, double inside_share) {
-  const double cell = s.cells.cell;
   const double spacing = point_spacing(index, 1, 0.5);
-  SheetCut cut = cut_to_sheet(s.shell, index, oriented_normals(index));
+  const auto normals = oriented_normals(index);
+  const std::vector<uint8_t> thin = thin_under(s.shell, s.cells);
+  SheetCut cut = cut_to_sheet(s.shell, index, normals, &thin);
   if (cut.sheet.triangle_count() == 0 || !mesh_info(cut.sheet).manifold) {
     s.surface_reason = "closed: cutting the carved slab to one side failed";
     return false;
   }
   // A carving that did not leak (a thin closed shape: a torus's tube, a
-  // plate) has one side only, all of it facing the points' normals.
-  // (Or all of it facing away, should the normals' orientation be inside out.)
-  const double removed_share = static_cast<double>(cut.removed) / static_cast<double>(s.shell.triangle_count());
-  // The cut's own clean-up turns back the islands noise flips, so a shell
-  // that did not leak loses next to nothing; a leak into part of a torus's
-  // tube already cut a tenth.
-  if (o.surface != SurfaceMode::open && (removed_share < kLeakCut || removed_share > 1 - kLeakCut)) {
+  // plate) has one side only: next to none of its shell lies behind the
+  // points over thin solid.  A leak into part of a double torus's tube put
+  // 2% of the shell there; a noisy sphere's flipped normals 0.04%, a triple
+  // torus sampled ten times denser on one side 0.6%.
+  const double behind_share = static_cast<double>(cut.behind) / static_cast<double>(s.shell.triangle_count());
+  if (o.surface != SurfaceMode::open && behind_share < kLeakCut) {
     s.surface_reason = "closed: the carving encloses " + fmt("%.2g", inside_share) +
                        " empty cells per occupied one, but its shell faces the points from one side only";
     return false;
   }
+  // The automatic grid search steps back to coarse grids when finer ones
+  // leak, and a sheet leaks at every grid: cut it again from the grid the
+  // search starts from (cells of two spacings, which still close the
+  // sampling's gaps), keeping the coarse carving should the sheet fail.
+  struct Carved {
+    CellGrid cells;
+    CarvingStats carving;
+    TriangleMesh shell;
+    MeshInfo info;
+  };
+  std::optional<Carved> coarse;
+  const int want = std::clamp(static_cast<int>(s.carving.grid * s.cells.cell / point_spacing(index, 1, 0.99)), 8, 256);
+  if (o.grid == 0 && want > s.carving.grid) {
+    CarvingStats stats;
+    CellGrid cells = carve(index.points(), want, &stats);
+    auto shell = triangulate_shell(cells);
+    if (shell.ok()) {
+      const std::vector<uint8_t> fine_thin = thin_under(shell.value(), cells);
+      SheetCut fine = cut_to_sheet(shell.value(), index, normals, &fine_thin);
+      if (fine.sheet.triangle_count() > 0 && mesh_info(fine.sheet).manifold) {
+        coarse = Carved{std::move(s.cells), s.carving, std::move(s.shell), s.shell_info};
+        s.cells = std::move(cells);
+        s.carving = stats;
+        s.shell = std::move(shell).value();
+        s.shell_info = mesh_info(s.shell);
+        cut = std::move(fine);
+      }
+    }
+  }
+  const auto fall_back = [&](std::string why) {
+    s.surface_reason = std::move(why);
+    if (coarse) {
+      s.cells = std::move(coarse->cells);
+      s.carving = coarse->carving;
+      s.shell = std::move(coarse->shell);
+      s.shell_info = coarse->info;
+    }
+    return false;
+  };
+  const double cell = s.cells.cell;
   TriangleMesh sheet = std::move(cut.sheet);
   ShrinkWrapStats wrap = shrink_wrap(sheet, index, o.shrink_wrap);
   // The slab's rim overhangs the last points by up to a cell or two.
   const size_t trimmed = trim_unsupported(sheet, index, std::max(2 * spacing, 0.75 * cell));
-  if (sheet.triangle_count() == 0) {
-    s.surface_reason = "closed: no part of the one-sided sheet lies on the points";
-    return false;
-  }
+  if (sheet.triangle_count() == 0) return fall_back("closed: no part of the one-sided sheet lies on the points");
   // Does one side explain the points?  A thin closed part (a plate thinner
   // than two cells) carves like a sheet too, but half its points then lie a
   // plate's thickness away.
   const double to_sheet = points_to_mesh(index.points().xyz, sheet).mean;
-  if (o.surface == SurfaceMode::automatic && to_sheet > 0.35 * cell) {
-    s.surface_reason = "closed: the carving encloses almost no volume, but one side of it leaves the points " +
-                       fmt("%.2g", to_sheet / cell) + " cells away on average (two sides close together)";
-    return false;
-  }
+  // Measured in point spacings: a thin plate's one side leaves its points
+  // 2.2-2.5 spacings away on average, open scans 0.04-0.8 (a noisy lidar
+  // scan the most).
+  if (o.surface == SurfaceMode::automatic && to_sheet > kSheetFit * spacing)
+    return fall_back("closed: the carving encloses almost no volume, but one side of it leaves the points " +
+                     fmt("%.2g", to_sheet / spacing) + " spacings away on average (two sides close together)");
+  // Pinholes (a loop a few cells round) are gaps in the sampling or notches
+  // the cut left, not where the scan ends: closed in every mode.
+  const HoleFill pinholes = fill_holes(sheet, cell, kPinhole * cell);
   const double sheet_area = mesh_area(sheet);
   TriangleMesh filled = sheet;
   const HoleFill fill = fill_holes(filled, cell);
@@ -118,6 +166,7 @@ bool build_sheet(ControlMeshStages& s, const PointIndex& index, const ControlMes
   }
   s.open = !close;
   s.cut_triangles = cut.removed + trimmed;
+  s.pinholes = pinholes.loops;
   s.bridged_area = close ? hole_share : 0;
   s.wrap_stats = wrap;
   s.wrapped = close ? std::move(filled) : std::move(sheet);
@@ -227,7 +276,7 @@ Result<ControlMeshStages> build_control_mesh(const PointIndex& index, const Cont
   if (s.bridged_area > 0) {
     // A bridged hole has no points to project onto: its vertices stay on
     // the membrane (their nearest point is the hole's rim).
-    const double reach = 1.5 * s.cells.cell;
+    const double reach = 0.5 * s.cells.cell;
     for (size_t v = 0; v < s.control.vertex_count(); ++v) {
       const float* p = &before[3 * v];
       const uint32_t c = index.nearest(p);

@@ -27,6 +27,15 @@ bool neighbour_mean(const TriangleMesh& m, const Adjacency& adj, uint32_t v, flo
   for (int a = 0; a < 3; ++a) out[a] = static_cast<float>(sum[a] / deg);
   return true;
 }
+// Where smoothing takes v: its neighbours' mean, or on the boundary its two
+// rim neighbours' mean (the mean of all would pull the rim into the sheet).
+using Rim = std::vector<std::array<uint32_t, 2>>;
+bool smoothing_target(const TriangleMesh& m, const Adjacency& adj, const Rim& rim, uint32_t v, float out[3]) {
+  if (rim[v][0] == kNotOnRim) return neighbour_mean(m, adj, v, out);
+  for (int a = 0; a < 3; ++a)
+    out[a] = static_cast<float>(0.5 * (double{m.positions[3 * size_t{rim[v][0]} + a]} + m.positions[3 * size_t{rim[v][1]} + a]));
+  return true;
+}
 V3 face_normal(const TriangleMesh& m, size_t f) {
   const V3 a = pos(m, m.triangles[3 * f]), b = pos(m, m.triangles[3 * f + 1]), c = pos(m, m.triangles[3 * f + 2]);
   return cross(sub(b, a), sub(c, a));
@@ -113,6 +122,24 @@ bool folded_around(const TriangleMesh& m, const Adjacency& vt, uint32_t v, doubl
   return false;
 }
 
+Rim rim_neighbours(const TriangleMesh& m) {
+  std::vector<std::pair<uint32_t, uint32_t>> half;
+  half.reserve(m.triangles.size());
+  for (size_t f = 0; f < m.triangle_count(); ++f)
+    for (int k = 0; k < 3; ++k) half.push_back({m.triangles[3 * f + k], m.triangles[3 * f + (k + 1) % 3]});
+  std::sort(half.begin(), half.end());
+  Rim rim(m.vertex_count(), {kNotOnRim, kNotOnRim});
+  std::vector<uint32_t> ins(m.vertex_count(), 0), outs(m.vertex_count(), 0);
+  for (const auto& [a, b] : half) {
+    if (std::binary_search(half.begin(), half.end(), std::pair{b, a})) continue;  // interior edge
+    rim[a][1] = b, rim[b][0] = a;
+    ++outs[a], ++ins[b];
+  }
+  for (size_t v = 0; v < rim.size(); ++v)
+    if ((ins[v] || outs[v]) && (ins[v] != 1 || outs[v] != 1)) rim[v] = {static_cast<uint32_t>(v), static_cast<uint32_t>(v)};
+  return rim;
+}
+
 std::vector<std::array<double, 3>> vertex_normals(const TriangleMesh& m) {
   std::vector<V3> n(m.vertex_count(), V3{0, 0, 0});
   for (size_t f = 0; f < m.triangle_count(); ++f) {
@@ -153,6 +180,7 @@ size_t count_foldovers(const TriangleMesh& m, double max_angle_degrees) {
 
 size_t untangle_folds(TriangleMesh& m, int rounds) {
   const Adjacency adj = vertex_adjacency(m);
+  const Rim rim = rim_neighbours(m);
   size_t met = 0;
   for (int round = 0; round < rounds; ++round) {
     const std::vector<uint32_t> folded = foldover_vertices(m);
@@ -165,7 +193,7 @@ size_t untangle_folds(TriangleMesh& m, int rounds) {
     }
     for (uint32_t v : ring) {  // in place: later vertices see earlier moves
       float to[3];
-      if (neighbour_mean(m, adj, v, to))
+      if (smoothing_target(m, adj, rim, v, to))
         for (int a = 0; a < 3; ++a) m.positions[3 * size_t{v} + a] = to[a];
     }
   }
@@ -350,6 +378,7 @@ std::vector<uint32_t> corners_of(const TriangleMesh& m, const std::vector<std::p
 size_t relax_self_intersections(TriangleMesh& m, int rounds) {
   size_t moved = 0;
   const Adjacency adj = vertex_adjacency(m);
+  const Rim rim = rim_neighbours(m);
   for (int round = 0; round < rounds; ++round) {
     const auto crossing = self_intersections(m);
     if (crossing.empty()) break;
@@ -357,7 +386,7 @@ size_t relax_self_intersections(TriangleMesh& m, int rounds) {
     // Jacobi: every listed vertex goes to its neighbours' mean as they were.
     std::vector<float> to(3 * verts.size(), 0.0f);
     std::vector<uint8_t> has(verts.size(), 0);
-    for (size_t i = 0; i < verts.size(); ++i) has[i] = neighbour_mean(m, adj, verts[i], &to[3 * i]);
+    for (size_t i = 0; i < verts.size(); ++i) has[i] = smoothing_target(m, adj, rim, verts[i], &to[3 * i]);
     for (size_t i = 0; i < verts.size(); ++i)
       if (has[i])
         for (int a = 0; a < 3; ++a) m.positions[3 * size_t{verts[i]} + a] = to[3 * i + a];

@@ -232,9 +232,44 @@ std::vector<std::array<float, 3>> oriented_normals(const PointIndex& index, size
   return out;
 }
 
-SheetCut cut_to_sheet(const TriangleMesh& shell, const PointIndex& index, const std::vector<std::array<float, 3>>& normals) {
+std::vector<uint8_t> thin_under(const TriangleMesh& shell, const CellGrid& g, int cells) {
+  std::vector<uint8_t> thin(shell.triangle_count(), 0);
+  for (uint32_t t = 0; t < shell.triangle_count(); ++t) {
+    double c[3] = {0, 0, 0};
+    for (int k = 0; k < 3; ++k)
+      for (int a = 0; a < 3; ++a) c[a] += shell.positions[3 * shell.triangles[3 * t + k] + a] / 3.0;
+    const auto n = face_normal(shell, t);
+    // From the middle of the first cell under the face, a cell per step.
+    for (int step = 0; step < cells; ++step) {
+      int ijk[3];
+      bool outside = false;
+      for (int a = 0; a < 3; ++a) {
+        ijk[a] = static_cast<int>(std::floor((c[a] - (0.5 + step) * g.cell * n[a] - g.origin[a]) / g.cell));
+        outside = outside || ijk[a] < 0 || ijk[a] >= g.n[a];
+      }
+      const uint8_t st = outside ? CellGrid::kAir : g.state[g.index(ijk[0], ijk[1], ijk[2])];
+      if (st == CellGrid::kInside || st == CellGrid::kFilled) break;
+      if (st == CellGrid::kAir && step > 0) {
+        thin[t] = 1;
+        break;
+      }
+    }
+  }
+  return thin;
+}
+
+SheetCut cut_to_sheet(const TriangleMesh& shell, const PointIndex& index, const std::vector<std::array<float, 3>>& normals,
+                      const std::vector<uint8_t>* thin) {
+  const PointCloud& pc = index.points();
   const size_t nt = shell.triangle_count();
-  std::vector<uint8_t> keep(nt, 0);
+  double edge = 0;
+  for (size_t t = 0; t < nt; ++t) {
+    const float* a = &shell.positions[3 * shell.triangles[3 * t]];
+    const float* b = &shell.positions[3 * shell.triangles[3 * t + 1]];
+    edge += std::sqrt(std::pow(double{a[0]} - b[0], 2) + std::pow(double{a[1]} - b[1], 2) + std::pow(double{a[2]} - b[2], 2));
+  }
+  edge /= std::max<size_t>(1, nt);
+  std::vector<uint8_t> keep(nt, 0), behind(nt, 0);
   for (uint32_t t = 0; t < nt; ++t) {
     float c[3] = {0, 0, 0};
     for (int k = 0; k < 3; ++k)
@@ -242,6 +277,18 @@ SheetCut cut_to_sheet(const TriangleMesh& shell, const PointIndex& index, const 
     const uint32_t p = index.nearest(c);
     const auto fn = face_normal(shell, t);
     keep[t] = fn[0] * normals[p][0] + fn[1] * normals[p][1] + fn[2] * normals[p][2] > 0;
+    // Against the local mid-surface (the centroid of the nearest points),
+    // not the nearest point: a noisy scan is a layer, and the shell lies
+    // outside all of it.
+    uint32_t near[12];
+    float d2[12];
+    const size_t got = index.nearest_k(c, 12, near, d2);
+    double mid[3] = {0, 0, 0};
+    for (size_t j = 0; j < got; ++j)
+      for (int a = 0; a < 3; ++a) mid[a] += pc.xyz[3 * near[j] + a] / static_cast<double>(got);
+    double off = 0;
+    for (int a = 0; a < 3; ++a) off += (c[a] - mid[a]) * normals[p][a];
+    behind[t] = off < -0.25 * edge;
   }
   // Islands: a noisy normal flips a few triangles to the wrong side.
   const std::vector<uint8_t> all(nt, 1);
@@ -265,6 +312,7 @@ SheetCut cut_to_sheet(const TriangleMesh& shell, const PointIndex& index, const 
   out.sheet = shell;
   compact(out.sheet, keep);
   out.removed = nt - out.sheet.triangle_count();
+  for (size_t t = 0; t < nt; ++t) out.behind += !keep[t] && behind[t] && (!thin || (*thin)[t]);
   return out;
 }
 
@@ -341,11 +389,18 @@ double mesh_area(const TriangleMesh& m) {
   return area;
 }
 
-HoleFill fill_holes(TriangleMesh& m, double edge) {
+HoleFill fill_holes(TriangleMesh& m, double edge, double max_perimeter) {
   HoleFill out;
   const size_t triangles_before = m.triangle_count();
   for (const std::vector<uint32_t>& loop : boundary_loops(m)) {
     const size_t n = loop.size();
+    double perimeter = 0;
+    for (size_t i = 0; i < n; ++i) {
+      double d2 = 0;
+      for (int a = 0; a < 3; ++a) d2 += std::pow(double{m.positions[3 * loop[i] + a]} - m.positions[3 * loop[(i + 1) % n] + a], 2);
+      perimeter += std::sqrt(d2);
+    }
+    if (perimeter >= max_perimeter) continue;
     double c[3] = {0, 0, 0}, radius = 0;
     for (uint32_t v : loop)
       for (int a = 0; a < 3; ++a) c[a] += m.positions[3 * v + a] / static_cast<double>(n);
@@ -406,6 +461,41 @@ HoleFill fill_holes(TriangleMesh& m, double edge) {
         for (int a = 0; a < 3; ++a) mean[a] += m.positions[3 * adj.index[i] + a];
       for (int a = 0; a < 3; ++a) m.positions[3 * v + a] = static_cast<float>(mean[a] / deg);
     }
+  // Fairing: a flat membrane meets a curved scan at a crease, which the
+  // butterfly rule overshoots; Gauss-Seidel steps on the umbrella operator
+  // applied twice (Kobbelt's discrete fairing) bend the patch so its slope
+  // follows the surface around the hole.  The loop and the rest stay put.
+  std::vector<uint8_t> in_fill(m.vertex_count(), 0), near_fill(m.vertex_count(), 0);
+  for (uint32_t v : out.added_vertices) in_fill[v] = near_fill[v] = 1;
+  std::vector<uint32_t> ring;
+  for (uint32_t v : out.added_vertices)
+    for (uint32_t i = adj.offset[v]; i < adj.offset[v + 1]; ++i)
+      if (!near_fill[adj.index[i]]) near_fill[adj.index[i]] = 1, ring.push_back(adj.index[i]);
+  std::vector<double> u(3 * m.vertex_count(), 0);
+  const auto umbrella = [&](uint32_t v) {
+    const uint32_t deg = adj.offset[v + 1] - adj.offset[v];
+    for (int a = 0; a < 3; ++a) {
+      double mean = 0;
+      for (uint32_t i = adj.offset[v]; i < adj.offset[v + 1]; ++i) mean += m.positions[3 * adj.index[i] + a];
+      u[3 * v + a] = mean / deg - m.positions[3 * v + a];
+    }
+  };
+  for (int it = 0; it < 200; ++it) {
+    for (uint32_t v : ring) umbrella(v);
+    for (uint32_t v : out.added_vertices) umbrella(v);
+    for (uint32_t v : out.added_vertices) {
+      const uint32_t deg = adj.offset[v + 1] - adj.offset[v];
+      double nu = 0, u2[3] = {0, 0, 0};
+      for (uint32_t i = adj.offset[v]; i < adj.offset[v + 1]; ++i) {
+        const uint32_t w = adj.index[i];
+        nu += 1.0 / (adj.offset[w + 1] - adj.offset[w]);
+        for (int a = 0; a < 3; ++a) u2[a] += u[3 * w + a] / deg;
+      }
+      nu = 1 + nu / deg;
+      for (int a = 0; a < 3; ++a) m.positions[3 * v + a] -= static_cast<float>((u2[a] - u[3 * v + a]) / nu);
+      umbrella(v);
+    }
+  }
   TriangleMesh patch;
   patch.positions = m.positions;
   patch.triangles.assign(m.triangles.begin() + 3 * triangles_before, m.triangles.end());

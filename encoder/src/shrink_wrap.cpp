@@ -1,10 +1,33 @@
 #include "dbss/encoder/shrink_wrap.h"
 
+#include <array>
 #include <cmath>
 
 #include "dbss/encoder/mesh_ops.h"
 
 namespace dbss {
+
+namespace {
+// The smoothing of a boundary vertex: towards the mean of its two rim
+// neighbours only, since the mean of all its neighbours lies inside the
+// sheet and would pull the rim in by about half an edge per iteration.
+// While rounding, the full step flattens a staircase rim; after it only the
+// part along the rim, so spacing evens out without the rim's curve (which a
+// step to the chord's middle cuts) shrinking it.
+void rim_smoothing(const TriangleMesh& m, const std::array<uint32_t, 2>& ends, const float* p, bool rounding, double lap[3]) {
+  const float* a = &m.positions[3 * size_t{ends[0]}];
+  const float* b = &m.positions[3 * size_t{ends[1]}];
+  double t[3], tt = 0, lt = 0;
+  for (int k = 0; k < 3; ++k) {
+    lap[k] = 0.5 * (double{a[k]} + b[k]) - p[k];
+    t[k] = double{b[k]} - a[k];
+    tt += t[k] * t[k], lt += lap[k] * t[k];
+  }
+  if (rounding) return;
+  // A pinched vertex (ends {v, v}) has t = 0 and stays.
+  for (int k = 0; k < 3; ++k) lap[k] = tt > 0 ? lt / tt * t[k] : 0.0;
+}
+}  // namespace
 
 ShrinkWrapStats shrink_wrap(TriangleMesh& m, const PointIndex& index, const ShrinkWrapOptions& o) {
   const PointCloud& pc = index.points();
@@ -22,6 +45,7 @@ ShrinkWrapStats shrink_wrap(TriangleMesh& m, const PointIndex& index, const Shri
 
   ShrinkWrapStats stats;
   const Adjacency vt = vertex_triangles(m);
+  const auto rim = rim_neighbours(m);
   // Every fourth iteration, and the last, undoes the moves that made
   // triangles cross since the last check, starting from the carved shell
   // (which has none), so the wrapped mesh has none either: the orientation
@@ -51,7 +75,12 @@ ShrinkWrapStats shrink_wrap(TriangleMesh& m, const PointIndex& index, const Shri
       // The first iterations smooth fully: the voxel staircase has steps
       // that tangential relaxation alone would fold instead of flatten.
       const double along = it < o.rounding_iterations ? 0.0 : lap[0] * nv[0] + lap[1] * nv[1] + lap[2] * nv[2];
-      for (int a = 0; a < 3; ++a) q[a] += o.smoothing * (lap[a] - along * nv[a]);
+      if (rim[v][0] == kNotOnRim) {
+        for (int a = 0; a < 3; ++a) q[a] += o.smoothing * (lap[a] - along * nv[a]);
+      } else {
+        rim_smoothing(m, rim[v], p, it < o.rounding_iterations, lap);
+        for (int a = 0; a < 3; ++a) q[a] += o.smoothing * lap[a];
+      }
       for (int tries = 0; tries < 4; ++tries) {
         const float to[3] = {static_cast<float>(q[0]), static_cast<float>(q[1]), static_cast<float>(q[2])};
         if (move_keeps_orientation(m, vt, static_cast<uint32_t>(v), to)) {

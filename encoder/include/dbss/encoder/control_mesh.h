@@ -43,7 +43,8 @@ struct ControlMeshStages {
   bool open = false;           // the surface keeps a boundary (SurfaceMode::open, or chosen so)
   std::string surface_reason;  // why closed or open, one line for people
   double bridged_area = 0;     // closed: share of the area bridged over holes (no points support it), 0..1
-  size_t cut_triangles = 0;    // open: shell triangles removed (the far side of the sheet, and those with no points near)
+  size_t cut_triangles = 0;
+  size_t pinholes = 0;         // sheet: loops of a few cells closed as gaps in the sampling    // open: shell triangles removed (the far side of the sheet, and those with no points near)
   CarvingStats carving;
   CellGrid cells;
   TriangleMesh shell;       // triangulated air faces

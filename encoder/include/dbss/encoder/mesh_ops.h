@@ -23,25 +23,40 @@ Adjacency vertex_triangles(const TriangleMesh& m);
 
 // Whether moving vertex v to `to` keeps every triangle around it facing
 // within 90 degrees of where it faced before (no triangle turns over).
+// Meshes with boundary are fine: the fan of a boundary vertex is open.
 bool move_keeps_orientation(const TriangleMesh& m, const Adjacency& vertex_tris, uint32_t v, const float to[3]);
 
-// Whether any edge of the triangles around v is folded (see count_foldovers).
+// Whether any edge of the triangles around v is folded (see count_foldovers;
+// a boundary edge has one triangle and is never folded).
 bool folded_around(const TriangleMesh& m, const Adjacency& vertex_tris, uint32_t v, double max_angle_degrees = 150);
 
-// Area-weighted unit vertex normals (zero for isolated or degenerate fans).
+// The neighbours of each vertex along the boundary (edges in one triangle)
+// of an oriented manifold: {previous, next} in the direction of the boundary
+// half-edges.  Interior vertices get {kNotOnRim, kNotOnRim}; a vertex where
+// the surface pinches (several boundary edges in or out) gets {v, v}, so
+// smoothing along the rim leaves it where it is.  Smoothing a boundary
+// vertex towards its rim neighbours rather than all its neighbours keeps an
+// open sheet from shrinking away from its edge.
+inline constexpr uint32_t kNotOnRim = 0xFFFFFFFFu;
+std::vector<std::array<uint32_t, 2>> rim_neighbours(const TriangleMesh& m);
+
+// Area-weighted unit vertex normals (zero for isolated or degenerate fans;
+// a boundary vertex's from its open fan).
 std::vector<std::array<double, 3>> vertex_normals(const TriangleMesh& m);
 
 // Edges whose two triangles fold back onto each other: the angle between
-// their normals is over `max_angle_degrees` (a fold-over).  Closed manifold
-// input expected.
+// their normals is over `max_angle_degrees` (a fold-over).  Oriented
+// manifold input, closed or with boundary; boundary edges (one triangle)
+// are never folded.
 size_t count_foldovers(const TriangleMesh& m, double max_angle_degrees = 150);
 
 // Vertices on the edges count_foldovers() would count.
 std::vector<uint32_t> foldover_vertices(const TriangleMesh& m, double max_angle_degrees = 150);
 
 // Smooths folds away: vertices on folded edges and their neighbours go to
-// the mean of their neighbours, up to `rounds` times.  Returns the number of
-// folded edges met.
+// the mean of their neighbours (boundary vertices: of their two boundary
+// neighbours, see rim_neighbours), up to `rounds` times.  Returns the number
+// of folded edges met.
 size_t untangle_folds(TriangleMesh& m, int rounds = 8);
 
 // Mean and largest exact distance from each point to the mesh's surface
@@ -74,8 +89,9 @@ size_t count_self_intersections(const TriangleMesh& m);
 size_t undo_self_intersections(TriangleMesh& m, const std::vector<float>& safe, int rounds = 8);
 
 // Where triangles cross and no earlier state is at hand (after edge
-// collapses), moves their vertices to their neighbours' mean, up to `rounds`
-// times.  Returns the number of vertex moves.
+// collapses), moves their vertices to their neighbours' mean (boundary
+// vertices: their two boundary neighbours' mean), up to `rounds` times.
+// Returns the number of vertex moves.
 size_t relax_self_intersections(TriangleMesh& m, int rounds = 10);
 
 // Winding-number inside test of a closed, outward-oriented mesh.

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "dbss/decoder/mesh.h"
+#include "dbss/encoder/cell_carving.h"
 #include "dbss/encoder/point_index.h"
 
 namespace dbss {
@@ -23,7 +24,18 @@ std::vector<std::array<float, 3>> oriented_normals(const PointIndex& index, size
 struct SheetCut {
   TriangleMesh sheet;     // the kept side, an oriented manifold with boundary (vertices renumbered)
   size_t removed = 0;     // shell triangles removed
+  // Of those, the ones behind the points (their centroid more than a
+  // quarter of an edge on the far side of the nearest point, along its
+  // oriented normal): the inside of a slab or of a leak.  A closed shell
+  // whose noisy normals flip a few triangles has them in front.
+  size_t behind = 0;
 };
+
+// Per shell triangle, whether the solid under it is thin: walking from the
+// triangle into the solid along its inward normal reaches air within
+// `cells` cells without meeting an empty inside cell (a slab, or a thin
+// part).  `shell` must be `grid`'s triangulated shell.
+std::vector<uint8_t> thin_under(const TriangleMesh& shell, const CellGrid& grid, int cells = 4);
 
 // Keeps the shell triangles whose outward normal agrees with the oriented
 // normal of the nearest point, then cleans the choice up: kept islands under
@@ -31,7 +43,11 @@ struct SheetCut {
 // triangles surround come back, triangles with two or three boundary edges
 // go, and at a vertex where the kept triangles form several fans only the
 // largest fan stays.  `shell` must be a closed oriented manifold.
-SheetCut cut_to_sheet(const TriangleMesh& shell, const PointIndex& index, const std::vector<std::array<float, 3>>& normals);
+// `thin` (optional, per shell triangle): `behind` counts only triangles
+// over thin solid, so a thick closed object whose normals flipped in a
+// patch (noise) shows none.
+SheetCut cut_to_sheet(const TriangleMesh& shell, const PointIndex& index, const std::vector<std::array<float, 3>>& normals,
+                      const std::vector<uint8_t>* thin = nullptr);
 
 // Removes triangles whose three corners and centroid are all farther than
 // `reach` from every point (the rim of the slab overhanging the points),
@@ -60,7 +76,8 @@ struct HoleFill {
 // vertex to its neighbours' mean, the loop held still), so the patch is as
 // flat as the loop lets it be.  The result is closed and keeps the
 // orientation.
-HoleFill fill_holes(TriangleMesh& m, double edge);
+// Only loops shorter than `max_perimeter` (model units) are closed.
+HoleFill fill_holes(TriangleMesh& m, double edge, double max_perimeter = 1e300);
 
 // Surface area, model units^2.
 double mesh_area(const TriangleMesh& m);

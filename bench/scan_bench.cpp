@@ -1,0 +1,280 @@
+// Real-scan regression table (issue 13): the encoder with default options on
+// defective scans of known shapes (tests/defect_shapes.h: outliers, holes,
+// a half, uneven density, noise) and on the libcgal-demo scans when
+// scripts/fetch-test-data.sh (or scripts/scan-bench.sh) has unpacked them.
+// One row per input: what came out (components, genus, boundary loops of
+// the finest level), the share of clamped displacements there, the points'
+// mean distance to that surface (relative to the diagonal, and to the
+// points' median spacing), the encode time, whether encoding failed, and
+// the self-check's warnings.
+//
+// Built with DBSS_SCAN_CHECK (bench/CMakeLists.txt) it also shows the
+// outlier removal, the surface mode chosen and check_scan()'s warnings;
+// without it, it builds against the encoder before those existed (the
+// "before" table).
+//
+// usage: scan_bench [--levels L] [--points N] [--no-scans] [--data DIR] [--surface auto|closed|open]
+//                   [--keep-outliers] [NAME_PART...]
+//   --points: samples per shape (default 8000); --data: the directory holding
+//   data/points_3 and data/meshes (default the source tree's test-data);
+//   NAME_PART: run only the inputs whose name contains one of them.
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "../tests/defect_shapes.h"
+#include "dbss/encoder/encode.h"
+#include "dbss/encoder/mesh_ops.h"
+#include "dbss/encoder/point_input.h"
+#ifdef DBSS_SCAN_CHECK
+#include "dbss/encoder/outliers.h"
+#include "dbss/encoder/scan_check.h"
+#endif
+
+namespace {
+
+using dbss::PointCloud;
+namespace dt = dbss::test;
+
+// One input: the points given to the encoder, and the points its error is
+// measured on (the input without the outliers added to it; else the input).
+// `expect`: the right result's components/genus/boundary loops ("1/2/0"),
+// alternatives separated by '|' (a hole may be bridged or kept open); empty
+// when not known.
+struct Input {
+  std::string name;
+  std::function<std::pair<PointCloud, PointCloud>()> make;  // points, reference
+  std::string expect;
+};
+
+struct Options {
+  uint32_t levels = 2;
+  size_t shape_points = 8000;
+  bool scans = true;
+  std::string data = std::string(DBSS_SOURCE_DIR) + "/test-data";
+  std::vector<std::string> only;
+#ifdef DBSS_SCAN_CHECK
+  dbss::SurfaceMode surface = dbss::SurfaceMode::automatic;
+  bool keep_outliers = false;
+#endif
+};
+
+std::vector<Input> defect_inputs(const Options& o) {
+  std::vector<Input> in;
+  const auto shapes = dt::genus_shapes();
+  for (const char* name : {"sphere", "torus", "double torus"}) {
+    const dt::Shape* s = dt::find_shape(shapes, name);
+    if (!s) continue;
+    const dt::Shape shape = *s;
+    const size_t n = o.shape_points;
+    auto clean = [shape, n] { return dt::sample_sdf(shape.sdf, shape.lo, shape.hi, n, 7); };
+    const std::string b = name;
+    const std::string g = std::to_string(shape.genus);
+    const std::string closed = "1/" + g + "/0";
+    // Cut by the plane z = 0: a disk with `genus` holes in it.
+    const std::string halved = "1/0/" + std::to_string(shape.genus + 1);
+    in.push_back({b, [clean] { auto c = clean(); return std::pair{c, c}; }, closed});
+    for (double share : {0.005, 0.01})
+      in.push_back({b + " +" + (share < 0.0075 ? "0.5" : "1") + "% outliers", [clean, share] {
+                      auto c = clean();
+                      return std::pair{dt::with_outliers(c, share, 11), c};
+                    }, closed});
+    for (double share : {0.10, 0.15})
+      in.push_back({b + " hole " + (share < 0.125 ? "10" : "15") + "%", [clean, share] {
+                      auto h = dt::with_hole(clean(), {0.3, 0.2, 1.0}, share);
+                      return std::pair{h, h};
+                    }, closed + "|1/" + g + "/1"});
+    in.push_back({b + " half", [clean] { auto h = dt::half(clean()); return std::pair{h, h}; }, halved});
+    in.push_back({b + " density 10x", [clean] {
+                    auto d = dt::with_density_gradient(clean(), 10.0, 13);
+                    return std::pair{d, d};
+                  }, closed});
+    in.push_back({b + " noise 0.1%", [clean] {
+                    auto d = dt::with_noise(clean(), 0.001, 17);
+                    return std::pair{d, d};
+                  }, closed});
+  }
+  return in;
+}
+
+std::vector<Input> scan_inputs(const Options& o) {
+  std::vector<Input> in;
+  const std::string data = o.data + "/data/";
+  auto read = [](const std::string& path) {
+    auto r = dbss::read_points(path);
+    if (!r.ok()) {
+      std::fprintf(stderr, "scan_bench: %s\n", r.status().message().c_str());
+      return PointCloud{};
+    }
+    return std::move(r).value();
+  };
+  for (const char* f : {"hippo1.ply", "half.xyz", "building.ply", "oni.ply", "fin90_with_PCA_normals.xyz", "blobby.xyz"}) {
+    const std::string p = data + "points_3/" + f;
+    if (!std::filesystem::exists(p)) {
+      std::fprintf(stderr, "scan_bench: %s absent (scripts/scan-bench.sh fetches it), skipped\n", p.c_str());
+      continue;
+    }
+    in.push_back({f, [read, p] { auto c = read(p); return std::pair{c, c}; }, ""});
+  }
+  const std::string bunny = data + "meshes/bunny00.off";
+  if (!std::filesystem::exists(bunny)) {
+    std::fprintf(stderr, "scan_bench: %s absent (scripts/fetch-test-data.sh), skipped\n", bunny.c_str());
+    return in;
+  }
+  in.push_back({"bunny00.off", [read, bunny] { auto c = read(bunny); return std::pair{c, c}; }, "1/0/0"});
+  in.push_back({"bunny +0.5% outliers", [read, bunny] {
+                  auto c = read(bunny);
+                  return std::pair{dt::with_outliers(c, 0.005, 11), c};
+                }, "1/0/0"});
+  // The bunny stands on its flat base at the lowest y.
+  in.push_back({"bunny bottom 12% cut", [read, bunny] {
+                  auto h = dt::with_slab_cut(read(bunny), {0, -1, 0}, 0.12);
+                  return std::pair{h, h};
+                }, "1/0/0|1/0/1"});
+  return in;
+}
+
+bool wanted(const Options& o, const std::string& name) {
+  if (o.only.empty()) return true;
+  for (const std::string& s : o.only)
+    if (name.find(s) != std::string::npos) return true;
+  return false;
+}
+
+int usage(bool error) {
+  std::fprintf(error ? stderr : stdout,
+               "usage: scan_bench [--levels L] [--points N] [--no-scans] [--data DIR] [--surface auto|closed|open]\n"
+               "                  [--keep-outliers] [NAME_PART...]\n");
+  return error ? 1 : 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Options o;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "--levels" && i + 1 < argc) {
+      const int l = std::atoi(argv[++i]);
+      if (l < 1 || l > 6) {
+        std::fprintf(stderr, "scan_bench: --levels must be 1..6\n");
+        return 1;
+      }
+      o.levels = static_cast<uint32_t>(l);
+    } else if (a == "--points" && i + 1 < argc) {
+      const long n = std::atol(argv[++i]);
+      if (n < 100 || n > 10000000) {
+        std::fprintf(stderr, "scan_bench: --points must be 100..10000000\n");
+        return 1;
+      }
+      o.shape_points = static_cast<size_t>(n);
+    } else if (a == "--no-scans") {
+      o.scans = false;
+    } else if (a == "--data" && i + 1 < argc) {
+      o.data = argv[++i];
+#ifdef DBSS_SCAN_CHECK
+    } else if (a == "--surface" && i + 1 < argc) {
+      const std::string m = argv[++i];
+      if (m == "auto") o.surface = dbss::SurfaceMode::automatic;
+      else if (m == "closed") o.surface = dbss::SurfaceMode::closed;
+      else if (m == "open") o.surface = dbss::SurfaceMode::open;
+      else return usage(true);
+    } else if (a == "--keep-outliers") {
+      o.keep_outliers = true;
+#endif
+    } else if (a == "--help" || a == "-h") {
+      return usage(false);
+    } else if (!a.empty() && a[0] == '-') {
+      return usage(true);
+    } else {
+      o.only.push_back(a);
+    }
+  }
+
+  std::vector<Input> inputs = defect_inputs(o);
+  if (o.scans)
+    for (Input& s : scan_inputs(o)) inputs.push_back(std::move(s));
+
+  std::printf("levels %u, default options; shapes sampled with %zu points\n", o.levels, o.shape_points);
+  std::printf("%-28s %7s %4s %5s %5s %4s %7s %9s %7s %7s %4s %6s %7s %-7s %s\n", "input", "points", "comp", "genus",
+              "loops", "topo", "clamp%", "p->s/diag", "p->s/sp", "enc s", "exit", "surf", "dropped", "verdict",
+              "warnings");
+  int failures = 0, silent = 0, wrong_topology = 0;
+  for (const Input& in : inputs) {
+    if (!wanted(o, in.name)) continue;
+    const auto [points, reference] = in.make();
+    std::printf("%-28s %7zu ", in.name.c_str(), points.size());
+    std::fflush(stdout);
+    dbss::EncodeOptions eo;
+    eo.levels = o.levels;
+#ifdef DBSS_SCAN_CHECK
+    eo.control.surface = o.surface;
+    eo.outliers.enabled = !o.keep_outliers;
+#endif
+    const auto t0 = std::chrono::steady_clock::now();
+    const dbss::Status valid = dbss::check_reconstructible(points, in.name);
+    dbss::Result<dbss::Encoding> r = valid.ok() ? dbss::encode_points(points, eo) : dbss::Result<dbss::Encoding>(valid);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    if (!r.ok()) {
+      ++failures;
+      std::printf("%4s %5s %5s %4s %7s %9s %7s %7.2f %4s %6s %7s %-7s %s\n", "-", "-", "-", "-", "-", "-", "-", seconds,
+                  "FAIL", "-", "-", "fail", "-");
+      std::fflush(stdout);
+      std::fprintf(stderr, "scan_bench: %s: %s\n", in.name.c_str(), r.status().to_string().c_str());
+      continue;
+    }
+    const dbss::Encoding& e = r.value();
+    const uint32_t L = static_cast<uint32_t>(e.levels.positions.size() - 1);
+    const dbss::TriangleMesh finest{e.levels.positions[L], e.levels.triangles[L]};
+    const dt::Topology topo = dt::topology(finest);
+    const dbss::LevelStats* st = L > 0 ? &e.levels.stats[L - 1] : nullptr;
+    const double clamped = st && st->odd ? double(st->clamped) / double(st->odd) : 0.0;
+    const double diag = dt::bounds(reference).diagonal();
+    const double to_surface = dbss::points_to_mesh(reference.xyz, finest).mean;
+    const double spacing = dt::median_spacing(points);
+    const bool within = clamped <= 0.02 && to_surface <= 3 * spacing;
+    std::string surf = "-", dropped = "-", warnings = "-";
+    bool warned = false;
+#ifdef DBSS_SCAN_CHECK
+    surf = e.stages.open ? "open" : "closed";
+    dropped = std::to_string(e.outliers.points_in - e.outliers.kept());
+    {
+      const dbss::PointIndex index(e.points);
+      const dbss::ScanCheck check = dbss::check_scan(e, index);
+      warnings.clear();
+      for (const dbss::ScanWarning& w : check.warnings) warnings += (warnings.empty() ? "" : ",") + w.code;
+      if (warnings.empty()) warnings = "none";
+      warned = !check.warnings.empty();
+    }
+#endif
+    const char* verdict = within ? (warned ? "ok+warn" : "ok") : (warned ? "warned" : "SILENT");
+    if (!within && !warned) ++silent;
+    const std::string got = std::to_string(topo.components) + "/" + std::to_string(topo.genus) + "/" +
+                            std::to_string(topo.boundary_loops);
+    const char* topo_mark = "?";
+    if (!in.expect.empty()) {
+      topo_mark = ("|" + in.expect + "|").find("|" + got + "|") != std::string::npos ? "=" : "X";
+      if (*topo_mark == 'X') ++wrong_topology;
+    }
+    std::printf("%4u %5lld %5u %4s %7.2f %9.2e %7.2f %7.2f %4s %6s %7s %-7s %s\n", topo.components,
+                static_cast<long long>(topo.genus), topo.boundary_loops, topo_mark, 100 * clamped, to_surface / diag,
+                spacing > 0 ? to_surface / spacing : 0.0, seconds, "ok", surf.c_str(), dropped.c_str(), verdict,
+                warnings.c_str());
+  }
+  std::printf("\ncomp, genus, loops: of the level-%u surface (genus summed over components, open ones included);\n"
+              "topo: '=' the right ones for the input (a hole: bridged, or open with one loop; a half: cut by z = 0,\n"
+              "a disk with genus holes), 'X' not, '?' not known.\n"
+              "clamp%%: displacements clamped at level %u.  p->s: the points' mean distance to that surface, measured\n"
+              "on the input without the outliers added to it, over its bounding-box diagonal (/diag) and over the\n"
+              "input's median spacing (/sp).  verdict: ok = clamp%% <= 2 and p->s <= 3 spacings; warned = outside\n"
+              "those bounds with a warning; SILENT = outside them with none.  surf, dropped, warnings: the surface\n"
+              "mode chosen, points dropped as outliers and check_scan()'s warning codes ('-': this build has none).\n",
+              o.levels, o.levels);
+  std::printf("%d failed, %d silently outside the bounds, %d with the wrong topology\n", failures, silent,
+              wrong_topology);
+  return 0;
+}
