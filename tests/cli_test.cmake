@@ -119,3 +119,44 @@ execute_process(COMMAND ${DBSS} compare ${example} --levels 5 RESULT_VARIABLE rc
 if(NOT rc EQUAL 0 OR NOT err STREQUAL "")
   message(FATAL_ERROR "compare with stderr redirected: exit ${rc}, stderr '${err}'")
 endif()
+
+# Real-scan handling.  The example's upper half (z >= 0) is an open patch of
+# a genus-2 surface: `auto` keeps it open with its three boundary loops (the
+# rim and the two holes) and says so, also in the file's meta chunk.
+file(STRINGS ${example} lines REGEX "^[^#]")
+set(upper "")
+set(stray "")
+foreach(line IN LISTS lines)
+  if(line MATCHES "^[^ ]+ [^ ]+ [0-9]")
+    string(APPEND upper "${line}\n")
+  endif()
+endforeach()
+file(WRITE ${WORK}/upper.xyz "${upper}")
+expect_run(0 "surface +[0-9.]+ +- +- +open: " ${DBSS} encode ${WORK}/upper.xyz -o ${WORK}/upper.dbss --levels 1)
+expect_run(0 "self-check: ok: 1 component\\(s\\) for 1 point cluster\\(s\\), open, 3 boundary loop\\(s\\)" ${DBSS} encode ${WORK}/upper.xyz -o ${WORK}/upper.dbss --levels 1)
+expect_run(0 "surface = open: " ${DBSS} info ${WORK}/upper.dbss)
+expect_run(0 "level 1" ${DBSS} decode ${WORK}/upper.dbss -o ${WORK}/upper.ply)
+# Asked to close it, the holes are bridged: one closed surface of genus 2.
+expect_run(0 "self-check: [^\n]*1 component\\(s\\) for 1 point cluster\\(s\\), closed" ${DBSS} encode ${WORK}/upper.xyz -o ${WORK}/upper-closed.dbss --levels 1 --surface closed)
+expect_run(0 "unsupported.bridged_area_share = 0\\.[0-9]+" ${DBSS} info ${WORK}/upper-closed.dbss)
+expect_run(1 "--surface needs closed, open or auto" ${DBSS} encode ${WORK}/upper.xyz -o ${WORK}/x.dbss --surface half)
+# A dozen stray points around the example: dropped by default; kept, they
+# carve into extra components, which the self-check names, and --strict
+# then writes nothing.
+foreach(i RANGE 1 12)
+  math(EXPR x "${i} % 5 - 2")
+  math(EXPR y "${i} % 3 - 1")
+  math(EXPR z "${i} % 2")
+  string(APPEND stray "${x}.5 ${y}.7 ${z}.9\n")
+endforeach()
+file(READ ${example} clean)
+file(WRITE ${WORK}/stray.xyz "${clean}${stray}")
+expect_run(0 "12 isolated points dropped" ${DBSS} encode ${WORK}/stray.xyz -o ${WORK}/stray.dbss --levels 1)
+expect_run(0 "self-check: ok: 1 component\\(s\\)" ${DBSS} encode ${WORK}/stray.xyz -o ${WORK}/stray.dbss --levels 1 --strict)
+expect_run(0 "warning \\(components\\): the surface has [0-9]+ component" ${DBSS} encode ${WORK}/stray.xyz -o ${WORK}/stray-kept.dbss --levels 1 --keep-outliers)
+expect_run(0 "warning.components = " ${DBSS} info ${WORK}/stray-kept.dbss)
+file(REMOVE ${WORK}/strict.dbss)
+expect_run(1 "warning\\(s\\) under --strict; [^\n]*strict.dbss not written" ${DBSS} encode ${WORK}/stray.xyz -o ${WORK}/strict.dbss --levels 1 --keep-outliers --strict)
+if(EXISTS ${WORK}/strict.dbss)
+  message(FATAL_ERROR "--strict with warnings left an output behind")
+endif()

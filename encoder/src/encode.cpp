@@ -101,7 +101,9 @@ Result<Encoding> encode_points(const PointIndex& input_index, const EncodeOption
   const std::string params = "grid=" + std::to_string(e.stages.carving.grid) + " control-faces=" +
                              std::to_string(e.stages.control.triangle_count()) + " control-bits=" +
                              std::to_string(o.control_bits) + " levels=" + std::to_string(o.levels) +
-                             " error=" + error_text + " effort=" + std::to_string(o.effort);
+                             " error=" + error_text + " effort=" + std::to_string(o.effort) +
+                             " surface=" + surface_mode_name(o.control.surface) +
+                             (o.outliers.enabled ? "" : " keep-outliers");
   c.metadata = {{"encoder", "dbss " + (o.encoder_version.empty() ? std::string("unknown") : o.encoder_version)},
                 {"encoder.params", params}};
   if (!o.source_name.empty()) c.metadata.push_back({"source", o.source_name});
