@@ -96,8 +96,9 @@ ScanCheck check_scan(const Encoding& e, const PointIndex& index) {
   if (c.clamped_share > kMaxClamped)
     warn("clamped", fmt("%.1f%%", 100 * c.clamped_share) + " of level " + std::to_string(level) +
                         " displacements clamped (bound " + fmt("%.0f%%", 100 * kMaxClamped) +
-                        "): the control mesh is far from the points, as where carving leaked through a hole or a sheet "
-                        "was closed over (try --surface open or --surface closed)");
+                        "): the surface is far from the points in places: a hole the carving leaked through or a sheet "
+                        "closed over (try --surface open or --surface closed), or sharp creases the subdivision "
+                        "overshoots");
   // A bridged hole is reported, not warned about; with the band between
   // its rim and the last points it leaves about 1.4 times its area bare.
   if (c.uncovered_share > kMaxUncovered + 1.5 * e.stages.bridged_area)
