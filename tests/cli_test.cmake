@@ -140,9 +140,8 @@ expect_run(0 "level 1" ${DBSS} decode ${WORK}/upper.dbss -o ${WORK}/upper.ply)
 expect_run(0 "self-check: [^\n]*1 component\\(s\\) for 1 point cluster\\(s\\), closed" ${DBSS} encode ${WORK}/upper.xyz -o ${WORK}/upper-closed.dbss --levels 1 --surface closed)
 expect_run(0 "unsupported.bridged_area_share = 0\\.[0-9]+" ${DBSS} info ${WORK}/upper-closed.dbss)
 expect_run(1 "--surface needs closed, open or auto" ${DBSS} encode ${WORK}/upper.xyz -o ${WORK}/x.dbss --surface half)
-# A dozen stray points around the example: dropped by default; kept, they
-# carve into extra components, which the self-check names, and --strict
-# then writes nothing.
+# A dozen stray points around the example: dropped by default, and the
+# result is the clean one.
 foreach(i RANGE 1 12)
   math(EXPR x "${i} % 5 - 2")
   math(EXPR y "${i} % 3 - 1")
@@ -153,10 +152,13 @@ file(READ ${example} clean)
 file(WRITE ${WORK}/stray.xyz "${clean}${stray}")
 expect_run(0 "12 isolated points dropped" ${DBSS} encode ${WORK}/stray.xyz -o ${WORK}/stray.dbss --levels 1)
 expect_run(0 "self-check: ok: 1 component\\(s\\)" ${DBSS} encode ${WORK}/stray.xyz -o ${WORK}/stray.dbss --levels 1 --strict)
-expect_run(0 "warning \\(components\\): the surface has [0-9]+ component" ${DBSS} encode ${WORK}/stray.xyz -o ${WORK}/stray-kept.dbss --levels 1 --keep-outliers)
-expect_run(0 "warning.components = " ${DBSS} info ${WORK}/stray-kept.dbss)
+expect_run(0 "outliers = 12 isolated points" ${DBSS} info ${WORK}/stray.dbss)
+# A carving grid far too coarse for the example: the self-check names what
+# is wrong, the file records it, and --strict writes nothing.
+expect_run(0 "warning \\(distance\\): the points lie [0-9.]+ point spacings" ${DBSS} encode ${example} -o ${WORK}/coarse.dbss --levels 1 --grid 6)
+expect_run(0 "warning.distance = " ${DBSS} info ${WORK}/coarse.dbss)
 file(REMOVE ${WORK}/strict.dbss)
-expect_run(1 "warning\\(s\\) under --strict; [^\n]*strict.dbss not written" ${DBSS} encode ${WORK}/stray.xyz -o ${WORK}/strict.dbss --levels 1 --keep-outliers --strict)
+expect_run(1 "warning\\(s\\) under --strict; [^\n]*strict.dbss not written" ${DBSS} encode ${example} -o ${WORK}/strict.dbss --levels 1 --grid 6 --strict)
 if(EXISTS ${WORK}/strict.dbss)
   message(FATAL_ERROR "--strict with warnings left an output behind")
 endif()

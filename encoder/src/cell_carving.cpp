@@ -327,7 +327,11 @@ CarvingChoice choose_carving(const PointCloud& pc, const PointIndex& index, int 
         ensure(j);
         if (!leaks(tried[j], last)) closed_again = j;
       }
-      if (!closed_again) return std::move(tried[good.back()].carving);
+      if (!closed_again) {
+        CarvingChoice chosen = std::move(tried[good.back()].carving);
+        chosen.leaking_grid = grids[i];
+        return chosen;
+      }
       for (size_t j = i; j < closed_again; ++j) tried[j].carving = {};
       i = closed_again - 1;  // the loop's ++i lands on the closed grid
       continue;

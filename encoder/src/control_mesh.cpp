@@ -28,6 +28,9 @@ constexpr double kLeakCut = 0.01;
 // Mean distance, in median point spacings, from the points to a one-sided
 // sheet above which the sheet does not explain them.
 constexpr double kSheetFit = 1.5;
+// Share of the area bridged above which a leak at a finer grid than the
+// search's closed one is not worth it (the bunny's base: 0.3%).
+constexpr double kMaxLeakBridged = 0.02;
 // Boundary loops shorter than this many cells are closed even in open mode.
 constexpr double kPinhole = 8;
 // Under `auto`, holes are bridged when the patches would cover less than
@@ -65,55 +68,17 @@ std::string fmt(const char* f, double x) {
 // to the points, holes optionally closed.  Leaves the result in s.wrapped;
 // returns false (s untouched but for s.surface_reason) when the sheet does
 // not explain the points and the closed path should run instead.
-bool build_sheet(ControlMeshStages& s, const PointIndex& index, const ControlMeshOptions& o, double inside_share) {
+bool build_sheet(ControlMeshStages& s, const PointIndex& index, const ControlMeshOptions& o, double inside_share,
+                 int leaking_grid) {
   const double spacing = point_spacing(index, 1, 0.5);
   const auto normals = oriented_normals(index);
-  const std::vector<uint8_t> thin = thin_under(s.shell, s.cells);
-  SheetCut cut = cut_to_sheet(s.shell, index, normals, &thin);
-  if (cut.sheet.triangle_count() == 0 || !mesh_info(cut.sheet).manifold) {
-    s.surface_reason = "closed: cutting the carved slab to one side failed";
-    return false;
-  }
-  // A carving that did not leak (a thin closed shape: a torus's tube, a
-  // plate) has one side only: next to none of its shell lies behind the
-  // points over thin solid.  A leak into part of a double torus's tube put
-  // 2% of the shell there; a noisy sphere's flipped normals 0.04%, a triple
-  // torus sampled ten times denser on one side 0.6%.
-  const double behind_share = static_cast<double>(cut.behind) / static_cast<double>(s.shell.triangle_count());
-  if (o.surface != SurfaceMode::open && behind_share < kLeakCut) {
-    s.surface_reason = "closed: the carving encloses " + fmt("%.2g", inside_share) +
-                       " empty cells per occupied one, but its shell faces the points from one side only";
-    return false;
-  }
-  // The automatic grid search steps back to coarse grids when finer ones
-  // leak, and a sheet leaks at every grid: cut it again from the grid the
-  // search starts from (cells of two spacings, which still close the
-  // sampling's gaps), keeping the coarse carving should the sheet fail.
   struct Carved {
     CellGrid cells;
     CarvingStats carving;
     TriangleMesh shell;
     MeshInfo info;
   };
-  std::optional<Carved> coarse;
-  const int want = std::clamp(static_cast<int>(s.carving.grid * s.cells.cell / point_spacing(index, 1, 0.99)), 8, 256);
-  if (o.grid == 0 && want > s.carving.grid) {
-    CarvingStats stats;
-    CellGrid cells = carve(index.points(), want, &stats);
-    auto shell = triangulate_shell(cells);
-    if (shell.ok()) {
-      const std::vector<uint8_t> fine_thin = thin_under(shell.value(), cells);
-      SheetCut fine = cut_to_sheet(shell.value(), index, normals, &fine_thin);
-      if (fine.sheet.triangle_count() > 0 && mesh_info(fine.sheet).manifold) {
-        coarse = Carved{std::move(s.cells), s.carving, std::move(s.shell), s.shell_info};
-        s.cells = std::move(cells);
-        s.carving = stats;
-        s.shell = std::move(shell).value();
-        s.shell_info = mesh_info(s.shell);
-        cut = std::move(fine);
-      }
-    }
-  }
+  std::optional<Carved> coarse;  // the search's carving, while a finer one is tried
   const auto fall_back = [&](std::string why) {
     s.surface_reason = std::move(why);
     if (coarse) {
@@ -124,6 +89,52 @@ bool build_sheet(ControlMeshStages& s, const PointIndex& index, const ControlMes
     }
     return false;
   };
+  const auto behind_share = [&](const SheetCut& c) {
+    return static_cast<double>(c.behind) / static_cast<double>(std::max<size_t>(1, s.shell.triangle_count()));
+  };
+  const auto usable = [](const SheetCut& c) { return c.sheet.triangle_count() > 0 && mesh_info(c.sheet).manifold; };
+  const std::vector<uint8_t> thin = thin_under(s.shell, s.cells);
+  SheetCut cut = cut_to_sheet(s.shell, index, normals, &thin);
+  // A carving that did not leak (a thin closed shape: a torus's tube, a
+  // plate) has one side only: next to none of its shell lies behind the
+  // points over thin solid.  A leak into part of a double torus's tube put
+  // 2% of the shell there; a noisy sphere's flipped normals 0.04%, a triple
+  // torus sampled ten times denser on one side 0.6%.
+  const std::string one_side = "closed: the carving encloses " + fmt("%.2g", inside_share) +
+                               " empty cells per occupied one, and its shell faces the points from one side only";
+  // Whether the search's own carving is closed (one-sided), should a finer
+  // one open more gaps than are worth bridging.
+  const bool coarse_closed = usable(cut) && behind_share(cut) < kLeakCut;
+  if (leaking_grid == 0 && !usable(cut)) return fall_back("closed: cutting the carved slab to one side failed");
+  if (leaking_grid == 0 && o.surface != SurfaceMode::open && behind_share(cut) < kLeakCut) return fall_back(one_side);
+  // The automatic grid search stops short of the grids that leak, and a
+  // sheet leaks at every grid: the sheet is cut from the finest grid the
+  // sampling supports (cells of one spacing at its sparse end; the carving
+  // still closes gaps of two), the search's carving kept should it fail.
+  const int want = std::clamp(static_cast<int>(s.carving.grid * s.cells.cell / point_spacing(index, 1, 0.99)), 8, 256);
+  // (A grid a step or two finer gains too little to be worth the cut.)
+  if (o.grid == 0 && want > s.carving.grid + s.carving.grid / 8) {
+    CarvingStats stats;
+    CellGrid cells = carve(index.points(), want, &stats);
+    auto shell = triangulate_shell(cells);
+    if (shell.ok()) {
+      const std::vector<uint8_t> fine_thin = thin_under(shell.value(), cells);
+      SheetCut fine = cut_to_sheet(shell.value(), index, normals, &fine_thin);
+      if (usable(fine)) {
+        coarse = Carved{std::move(s.cells), s.carving, std::move(s.shell), s.shell_info};
+        s.cells = std::move(cells);
+        s.carving = stats;
+        s.shell = std::move(shell).value();
+        s.shell_info = mesh_info(s.shell);
+        cut = std::move(fine);
+      }
+    }
+  }
+  if (!usable(cut)) return fall_back("closed: cutting the carved slab to one side failed");
+  if (o.surface != SurfaceMode::open && behind_share(cut) < kLeakCut)
+    return fall_back(leaking_grid ? "closed: grids of " + std::to_string(leaking_grid) +
+                                        " cells and finer leak, but not into a second side"
+                                  : one_side);
   const double cell = s.cells.cell;
   TriangleMesh sheet = std::move(cut.sheet);
   ShrinkWrapStats wrap = shrink_wrap(sheet, index, o.shrink_wrap);
@@ -147,9 +158,19 @@ bool build_sheet(ControlMeshStages& s, const PointIndex& index, const ControlMes
   TriangleMesh filled = sheet;
   const HoleFill fill = fill_holes(filled, cell);
   const double hole_share = fill.area / std::max(1e-300, fill.area + sheet_area);
+  // A closed carving was at hand (the search's): a leak at a finer grid is
+  // worth bridging only where it is a hole or two (the bunny's base, 0.3%
+  // of the area), not a sampling too sparse for that grid all over (a
+  // triple torus at one spacing per cell: 30 gaps, 8.5%).
+  if (leaking_grid && coarse_closed && o.surface != SurfaceMode::open && hole_share > kMaxLeakBridged)
+    return fall_back("closed: grids of " + std::to_string(leaking_grid) + " cells and finer leak through " +
+                     std::to_string(fill.loops) + " gaps in the points (" + fmt("%.1f", 100 * hole_share) +
+                     "% of the area)");
   bool close = o.surface == SurfaceMode::closed;
-  const std::string why_thin = "the carving encloses " + fmt("%.2g", inside_share) +
-                               " empty cells per occupied one (it leaks through gaps in the points)";
+  const std::string why_thin = leaking_grid ? "grids of " + std::to_string(leaking_grid) +
+                                                 " cells and finer leak through gaps in the points"
+                                           : "the carving encloses " + fmt("%.2g", inside_share) +
+                                                 " empty cells per occupied one (it leaks through gaps in the points)";
   if (o.surface == SurfaceMode::automatic) {
     // A few holes in an object's scan (the side it stood on) are closed; a
     // patch whose boundary would need more than this to close stays open.
@@ -189,6 +210,7 @@ Result<ControlMeshStages> build_control_mesh(const PointCloud& points, const Con
 Result<ControlMeshStages> build_control_mesh(const PointIndex& index, const ControlMeshOptions& o) {
   const PointCloud& points = index.points();
   ControlMeshStages s;
+  int leaking_grid = 0;  // the automatic search stopped at grids this fine that leak (0: none did)
   auto stage = [&](const char* name) {
     if (o.on_stage) o.on_stage(name);
   };
@@ -204,6 +226,7 @@ Result<ControlMeshStages> build_control_mesh(const PointIndex& index, const Cont
     CarvingChoice chosen = choose_carving(points, index);
     s.cells = std::move(chosen.cells);
     s.carving = chosen.stats;
+    leaking_grid = chosen.leaking_grid;
     s.seconds.grid = since(t);
     t = Clock::now();
   }
@@ -224,10 +247,10 @@ Result<ControlMeshStages> build_control_mesh(const PointIndex& index, const Cont
   const double inside_share =
       static_cast<double>(count_state(s.cells, CellGrid::kInside, CellGrid::kFilled)) / std::max<size_t>(1, occupied);
   bool sheet = false;
-  if (o.surface == SurfaceMode::open || inside_share < kMaybeLeaked) {
+  if (o.surface == SurfaceMode::open || inside_share < kMaybeLeaked || leaking_grid) {
     stage("cutting the open sheet");
     t = Clock::now();
-    sheet = build_sheet(s, index, o, inside_share);
+    sheet = build_sheet(s, index, o, inside_share, leaking_grid);
     s.seconds.shrink_wrap = since(t);
     if (o.surface == SurfaceMode::open && !sheet)
       return Status(ErrorCode::invalid_argument, "--surface open: " + s.surface_reason.substr(s.surface_reason.find(':') + 2));
@@ -247,7 +270,10 @@ Result<ControlMeshStages> build_control_mesh(const PointIndex& index, const Cont
 
   stage("simplifying");
   t = Clock::now();
-  // A sheet has one side where the slab's shell had two.
+  // A sheet gets the faces of a shell twice its size: its rim and its
+  // bridged patches need them.  With one share hippo1.ply clamped 3.0% of
+  // its displacements (1.3% with two), and spheres and tori with a bridged
+  // 10% hole came out 1.7-2.2 times farther from their points.
   const uint32_t target = o.control_faces ? o.control_faces
                                           : default_control_faces(static_cast<uint32_t>(sheet ? 2 * s.wrapped.triangle_count()
                                                                                               : s.shell.triangle_count()),
@@ -271,12 +297,13 @@ Result<ControlMeshStages> build_control_mesh(const PointIndex& index, const Cont
   // A vertex whose move was refused may go once its neighbours have moved.
   s.projection_skipped = project_to_points(s.control, index);
   for (int again = 0; again < 3 && s.projection_skipped > 0; ++again) s.projection_skipped = project_to_points(s.control, index);
-  // Projection checks folds only locally; on thin parts a vertex can still
-  // pass through the opposite side.
   if (s.bridged_area > 0) {
-    // A bridged hole has no points to project onto: its vertices stay on
-    // the membrane (their nearest point is the hole's rim).
-    const double reach = 0.5 * s.cells.cell;
+    // A bridged hole has no points to project onto: vertices more than two
+    // cells from any point stay on the patch (their nearest point is on the
+    // hole's rim).  Nearer ones go to the rim like the rest: at half a cell
+    // the double torus's bridged tube clamped 4% of its displacements, at
+    // two cells 2.8%.
+    const double reach = 2.0 * s.cells.cell;
     for (size_t v = 0; v < s.control.vertex_count(); ++v) {
       const float* p = &before[3 * v];
       const uint32_t c = index.nearest(p);
@@ -286,6 +313,8 @@ Result<ControlMeshStages> build_control_mesh(const PointIndex& index, const Cont
         for (int a = 0; a < 3; ++a) s.control.positions[3 * v + a] = p[a];
     }
   }
+  // Projection checks folds only locally; on thin parts a vertex can still
+  // pass through the opposite side.
   s.projection_skipped += undo_self_intersections(s.control, before);
   s.seconds.project = since(t);
   return s;

@@ -299,12 +299,16 @@ SheetCut cut_to_sheet(const TriangleMesh& shell, const PointIndex& index, const 
   const double small = 0.01 * static_cast<double>(kept);
   std::vector<uint8_t> flip(sizes.size(), 0);
   for (size_t g = 0; g < sizes.size(); ++g) flip[g] = static_cast<double>(sizes[g]) < small;
-  // A small dropped island comes back only if kept triangles surround it
-  // (a hole in the sheet, not a notch in its rim).
+  // A small dropped island (kept triangles all round it, or it would join
+  // a larger dropped group) comes back only if what surrounds it stays: a
+  // stray point's own little closed shell has a small kept half and a small
+  // dropped half, and goes whole.
+  std::vector<uint8_t> back(sizes.size(), 1);
   for (uint32_t t = 0; t < nt; ++t)
     if (!keep[t] && flip[group[t]])
       for (int k = 0; k < 3; ++k)
-        if (const uint32_t u = adj[3 * t + k]; !keep[u] && group[u] != group[t]) flip[group[t]] = 0;
+        if (const uint32_t u = adj[3 * t + k]; keep[u] && flip[group[u]]) back[group[t]] = 0;
+  for (size_t g = 0; g < sizes.size(); ++g) flip[g] = flip[g] && back[g];
   for (uint32_t t = 0; t < nt; ++t)
     if (flip[group[t]]) keep[t] = !keep[t];
   clean_alive(shell, keep);

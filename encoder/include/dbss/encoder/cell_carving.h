@@ -58,6 +58,7 @@ class PointIndex;
 struct CarvingChoice {
   CellGrid cells;
   CarvingStats stats;  // stats.grid is the chosen grid
+  int leaking_grid = 0;  // the first of the leaking grids that ended the search (0: none leaked)
 };
 CarvingChoice choose_carving(const PointCloud& points, const PointIndex& index, int max_grid = 256);
 
