@@ -270,13 +270,19 @@ Result<ControlMeshStages> build_control_mesh(const PointIndex& index, const Cont
 
   stage("simplifying");
   t = Clock::now();
-  // A sheet gets the faces of a shell twice its size: its rim and its
-  // bridged patches need them.  With one share hippo1.ply clamped 3.0% of
-  // its displacements (1.3% with two), and spheres and tori with a bridged
-  // 10% hole came out 1.7-2.2 times farther from their points.
+  // An open sheet, or one with a sizeable bridged patch, gets the faces of a
+  // shell twice its size: its rim and its patches need them.  With one share
+  // hippo1.ply clamped 3.0% of its displacements (1.3% with two), and
+  // spheres and tori with a bridged 10% hole came out 1.7-2.2 times farther
+  // from their points.  A closed sheet with a pinhole or two bridged (the
+  // bunny's base, 0.3% of its area) counts like any closed shell: twice
+  // the faces there doubled its control mesh for no gain in its level 2
+  // against level 3.
+  const bool rim_or_patch = sheet && (s.open || s.bridged_area >= kMaxLeakBridged);
   const uint32_t target = o.control_faces ? o.control_faces
-                                          : default_control_faces(static_cast<uint32_t>(sheet ? 2 * s.wrapped.triangle_count()
-                                                                                              : s.shell.triangle_count()),
+                                          : default_control_faces(static_cast<uint32_t>(rim_or_patch ? 2 * s.wrapped.triangle_count()
+                                                                                                      : sheet ? s.wrapped.triangle_count()
+                                                                                                      : s.shell.triangle_count()),
                                                                   wrapped_info.genus);
   auto simplified = simplify_mesh(s.wrapped, target, &s.simplify_stats);
   if (!simplified.ok()) return simplified.status();
