@@ -153,7 +153,7 @@ int run_encode(const std::vector<std::string_view>& args) {
   };
   row("read points", read_s, nullptr, std::to_string(pc.size()) + " points");
   if (options.outliers.enabled)
-    row("outliers", 0, nullptr,
+    row("outliers", e.seconds.outliers, nullptr,
         std::to_string(e.outliers.isolated) + " isolated points dropped, " + std::to_string(e.outliers.cluster_points) +
             " in " + std::to_string(e.outliers.clusters_dropped) + " small cluster(s) of " + std::to_string(e.outliers.clusters));
   row("choose grid", st.seconds.grid, nullptr, "grid " + std::to_string(st.carving.grid) + (options.control.grid ? " (given)" : " (automatic)"));
@@ -174,6 +174,7 @@ int run_encode(const std::vector<std::string_view>& args) {
   row("projection", st.seconds.project, &st.control, std::to_string(st.projection_skipped) + " vertices kept off the points");
   row("Draco", e.seconds.draco, &e.control, std::to_string(e.contents.control_mesh.size()) + " bytes of Draco, " + std::to_string(options.control_bits) + "-bit positions");
   row("displacement levels", e.seconds.levels, nullptr, std::to_string(options.levels) + " level(s)");
+  row("self-check", e.seconds.check, nullptr, std::to_string(e.check.warnings.size()) + " warning(s)");
   row("container", e.seconds.serialize, nullptr, std::to_string(e.bytes.size()) + " bytes");
   if (!dump.empty()) std::printf("stages written to %s/\n", dump.c_str());
   if (options.levels > 0) {

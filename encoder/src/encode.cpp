@@ -40,6 +40,8 @@ Result<Encoding> encode_points(const PointIndex& input_index, const EncodeOption
   if (e.points.size() != input_index.points().size()) cleaned = std::make_unique<PointIndex>(e.points);
   const PointIndex& index = cleaned ? *cleaned : input_index;
   const PointCloud& pc = index.points();
+  e.seconds.outliers = since(t);
+  t = Clock::now();
   ControlMeshOptions co = o.control;
   if (!co.on_stage && o.on_progress) co.on_stage = [&](const char* s) { o.on_progress(s); };
   auto stages = build_control_mesh(index, co);
@@ -108,7 +110,9 @@ Result<Encoding> encode_points(const PointIndex& input_index, const EncodeOption
                 {"encoder.params", params}};
   if (!o.source_name.empty()) c.metadata.push_back({"source", o.source_name});
   // What a reader of the file should know about how far to trust it.
+  const auto check_start = Clock::now();
   e.check = check_scan(e, index);
+  e.seconds.check = since(check_start);
   c.metadata.push_back({"surface", e.stages.surface_reason});
   if (e.outliers.points_in != e.outliers.kept())
     c.metadata.push_back({"outliers", std::to_string(e.outliers.isolated) + " isolated points and " +
@@ -131,7 +135,7 @@ Result<Encoding> encode_points(const PointIndex& input_index, const EncodeOption
   if (Status s = reader.feed(e.bytes); !s.ok()) return Status(ErrorCode::internal, "own file does not read back: " + s.to_string());
   if (Status s = reader.finish(); !s.ok()) return Status(ErrorCode::internal, "own file does not read back: " + s.to_string());
   e.toc = reader.toc();
-  e.seconds.serialize = since(t);
+  e.seconds.serialize = since(t) - e.seconds.check;
   return e;
 }
 

@@ -39,7 +39,7 @@ struct EncodeOptions {
 };
 
 struct EncodeTimes {
-  double control = 0, draco = 0, levels = 0, serialize = 0;  // seconds
+  double outliers = 0, control = 0, draco = 0, levels = 0, check = 0, serialize = 0;  // seconds
 };
 
 struct Encoding {
