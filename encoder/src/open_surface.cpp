@@ -247,7 +247,7 @@ std::vector<uint8_t> thin_under(const TriangleMesh& shell, const CellGrid& g, in
         ijk[a] = static_cast<int>(std::floor((c[a] - (0.5 + step) * g.cell * n[a] - g.origin[a]) / g.cell));
         outside = outside || ijk[a] < 0 || ijk[a] >= g.n[a];
       }
-      const uint8_t st = outside ? CellGrid::kAir : g.state[g.index(ijk[0], ijk[1], ijk[2])];
+      const uint8_t st = outside ? uint8_t{CellGrid::kAir} : g.state[g.index(ijk[0], ijk[1], ijk[2])];
       if (st == CellGrid::kInside || st == CellGrid::kFilled) break;
       if (st == CellGrid::kAir && step > 0) {
         thin[t] = 1;

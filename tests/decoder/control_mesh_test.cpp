@@ -87,9 +87,10 @@ TEST_CASE("control mesh decoding refuses limits, garbage and every truncation wi
     auto r = dbss::decode_control_mesh(std::span<const uint8_t>(b.data(), n), 1000, 1000);
     if (!r.ok()) ++failures;
   }
-  // Draco has no checksum, so a cut may still decode to something; the
-  // container's CRC is what catches damage.  Most cuts must fail outright.
-  CHECK(failures > b.size() / 2);
+  // Draco has no checksum, so a cut could still decode to something (the
+  // container's CRC is what catches damage), but measured, every one of
+  // the 382 cuts of this mesh fails outright: so must they all.
+  CHECK(failures == b.size());
 }
 
 TEST_CASE("encode_control_mesh rejects malformed meshes") {

@@ -114,7 +114,7 @@ TEST_CASE("bad input files give clear errors naming the file and the place") {
   CHECK(err("huge.xyz", "1e31 0 0\n").find("line 1") != std::string::npos);
   CHECK(err("cut.off", "OFF\n3 1 0\n0 0 0\n1 1 1\n").find("ends after 2 of 3") != std::string::npos);
   CHECK(err("bad.stl", "not an stl at all").find("STL") != std::string::npos);
-  CHECK(!err("noheader.ply", "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\n").empty());
+  CHECK(err("noheader.ply", "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\n").find("no 'end_header'") != std::string::npos);
   std::string cut = "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nend_header\n";
   cut += std::string(20, '\0');
   CHECK(err("cut.ply", cut).find("byte") != std::string::npos);

@@ -167,6 +167,27 @@ TEST_CASE("level payload rules: non-canonical varints, bad raw_size, two zstd fr
   CHECK(ok.level(1).q[0] == kMaxAbsDisplacement);
 }
 
+TEST_CASE("varint limits: four bytes up to q = 2^24 read, past the range or over four bytes refused by name") {
+  const FileContents c = test::sample_contents(4, 6, 4, 1);
+  const auto file_of = [&](const std::vector<uint8_t>& raw) {
+    return read_all(assemble(encode_header(c.header), std::vector<RawChunk>{{kCtrl, encode_control(ControlCodec::draco, c.control_mesh)},
+                                                                            {kLevl, level_chunk(1, 6, raw)}}));
+  };
+  // z = 2^25 (four bytes, 0x80 0x80 0x80 0x10): q = 2^24, the largest.
+  const Reader ok = file_of({0x80, 0x80, 0x80, 0x10, 1, 2, 3, 4, 5});
+  REQUIRE(ok.complete());
+  CHECK(ok.level(1).q[0] == kMaxAbsDisplacement);
+  CHECK(ok.level(1).q[5] == -3);
+  // z = 2^25 + 2 (0x82 0x80 0x80 0x10): q = 2^24 + 1, outside the range.
+  const Reader big = file_of({0x82, 0x80, 0x80, 0x10, 1, 2, 3, 4, 5});
+  CHECK(big.status().code() == ErrorCode::bad_field);
+  CHECK_THAT(big.status().message(), Catch::Contains("#0 is outside -2^24..2^24"));
+  // Five bytes: refused as too long before its value is looked at.
+  const Reader longer = file_of({1, 0x80, 0x80, 0x80, 0x80, 0x01, 2, 3, 4, 5});
+  CHECK(longer.status().code() == ErrorCode::bad_field);
+  CHECK_THAT(longer.status().message(), Catch::Contains("varint #1 is over 4 bytes"));
+}
+
 TEST_CASE("long level payloads: runs of one-byte varints and a bad value far in, in both codings") {
   // The paper's genus-1 counts: 150 odd vertices at level 1.
   const FileContents c = test::sample_contents(50, 150, 100, 1);

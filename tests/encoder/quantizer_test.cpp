@@ -1,0 +1,188 @@
+// The sampler and the quantizer on surfaces whose distances are known: a
+// plane and a sphere.  Each level's odd vertices are recomputed here with
+// the decoder's reference path (stencil table, ring normals), sampled again,
+// and every stored integer must be the nearest one to distance / step, so
+// the vertex ends up within step / 2 of the sample along its normal.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "../shapes.h"
+#include "dbss/decoder/subdivision.h"
+#include "dbss/decoder/topology.h"
+#include "dbss/encoder/levels.h"
+#include "dbss/encoder/sampling.h"
+#include "dbss/format/container.h"
+
+using namespace dbss;
+
+namespace {
+
+struct OddVertex {
+  double point[3];   // undisplaced stencil point
+  double normal[3];  // the decoder's unit normal
+  double half_edge_length;
+};
+
+// Level l-1 -> l odd vertices, recomputed independently of encode_levels'
+// closed loop (which runs the fast kernels through LevelRefiner).
+std::vector<OddVertex> odd_vertices(const std::vector<float>& positions, const std::vector<uint32_t>& triangles) {
+  auto topo = build_topology(static_cast<uint32_t>(positions.size() / 3), triangles);
+  REQUIRE(topo.ok());
+  const LevelTopology& t = topo.value();
+  const LevelPlan plan = plan_level(t);
+  std::vector<float> s;
+  subdivide_geometry(plan, positions, {}, 0, s);
+  std::vector<double> n(3 * size_t{plan.odd_count()});
+  odd_normals(plan.rings.data(), s.data(), t.vertex_count, 0, plan.odd_count(), n.data());
+  std::vector<OddVertex> out(plan.odd_count());
+  for (uint32_t e = 0; e < plan.odd_count(); ++e) {
+    OddVertex& o = out[e];
+    for (int a = 0; a < 3; ++a) o.point[a] = s[3 * (size_t{t.vertex_count} + e) + a], o.normal[a] = n[3 * size_t{e} + a];
+    const uint32_t h = t.edge_half[e];
+    const float* u = &positions[3 * size_t{t.triangles[h]}];
+    const float* w = &positions[3 * size_t{t.triangles[next_half(h)]}];
+    o.half_edge_length = 0.5 * std::sqrt(std::pow(u[0] - w[0], 2.0) + std::pow(u[1] - w[1], 2.0) + std::pow(u[2] - w[2], 2.0));
+  }
+  return out;
+}
+
+// Checks every stored q of every level: q = round(d / step) for the sample
+// d, and the decoded vertex sits at q * step along the normal, within
+// step / 2 of d.  Returns the samples (per level, per odd vertex).
+std::vector<std::vector<double>> check_quantization(const EncodedLevels& enc, const PointIndex& index) {
+  std::vector<std::vector<double>> samples;
+  for (size_t l = 1; l < enc.positions.size(); ++l) {
+    INFO("level " << l);
+    const std::vector<OddVertex> odd = odd_vertices(enc.positions[l - 1], enc.triangles[l - 1]);
+    const format::Level& level = enc.levels[l - 1];
+    REQUIRE(level.q.size() == odd.size());
+    const double step = level.step;
+    const size_t evens = enc.positions[l - 1].size() / 3;
+    samples.emplace_back();
+    size_t wrong = 0, off = 0;
+    for (size_t e = 0; e < odd.size(); ++e) {
+      const OddVertex& o = odd[e];
+      const Sample s = sample_displacement(index, o.point, o.normal, o.half_edge_length, o.half_edge_length);
+      samples.back().push_back(s.distance);
+      const double limit = format::kMaxAbsDisplacement;
+      const int32_t expect = static_cast<int32_t>(std::clamp(std::round(s.distance / step), -limit, limit));
+      wrong += level.q[e] != expect;
+      // Where the decoder put the vertex, along its normal.
+      const float* m = &enc.positions[l][3 * (evens + e)];
+      double along = 0;
+      for (int a = 0; a < 3; ++a) along += (m[a] - o.point[a]) * o.normal[a];
+      // Rounding to binary32 moves a vertex by an ulp of its coordinates.
+      if (std::abs(s.distance - along) > 0.5 * step + 1e-6) ++off;
+    }
+    CHECK(wrong == 0);
+    CHECK(off == 0);
+  }
+  return samples;
+}
+
+}  // namespace
+
+TEST_CASE("quantizer on a plane: every odd vertex gets the nearest integer to its offset over the step") {
+  // A flat control grid at z = 0 under a plane of points at z = 3.7 steps:
+  // every level-1 normal is +z and every level-1 sample is 3.7 steps, so
+  // every q is 4 (truncation would give 3) and the level lies at 4 steps.
+  const TriangleMesh control = test::planar_grid(6, 5);
+  const double step = 0.05;
+  const float height = static_cast<float>(3.7 * step);
+  PointCloud pc;
+  for (int j = -10; j <= 60; ++j)
+    for (int i = -10; i <= 80; ++i)
+      pc.xyz.insert(pc.xyz.end(), {0.1f * static_cast<float>(i), 0.1f * static_cast<float>(j), height});
+  const PointIndex index(pc);
+  LevelEncodeOptions o;
+  o.levels = 3;
+  o.error = step / 2;  // step = 2 * error * diagonal
+  auto enc = encode_levels(control, index, 1.0, o);
+  REQUIRE(enc.ok());
+  REQUIRE(enc.value().levels[0].step == static_cast<float>(step));
+  const auto samples = check_quantization(enc.value(), index);
+  for (size_t e = 0; e < samples[0].size(); ++e) {
+    CHECK(samples[0][e] == Approx(height).margin(1e-6));
+    CHECK(enc.value().levels[0].q[e] == 4);
+  }
+  const std::vector<float>& level1 = enc.value().positions[1];
+  for (size_t v = control.vertex_count(); v < level1.size() / 3; ++v) CHECK(level1[3 * v + 2] == static_cast<float>(4 * static_cast<float>(step)));
+}
+
+TEST_CASE("quantizer and sampler on a sphere: samples match the exact distance along the normal, q rounds them") {
+  // An icosahedron inscribed in the sphere of its vertices, under points on
+  // that sphere (a Fibonacci lattice).  The exact distance from a stencil
+  // point p along the unit normal n to the sphere is the root of
+  // |p + t n| = R nearest to zero.
+  const TriangleMesh control = test::icosahedron();
+  const double R = std::sqrt(double{control.positions[0]} * control.positions[0] + double{control.positions[1]} * control.positions[1]);
+  PointCloud pc;
+  const size_t count = 60000;
+  for (size_t i = 0; i < count; ++i) {
+    const double z = 1 - (2 * i + 1.0) / count, r = std::sqrt(1 - z * z);
+    const double a = std::numbers::pi * (3 - std::sqrt(5.0)) * i;
+    pc.xyz.insert(pc.xyz.end(), {static_cast<float>(R * r * std::cos(a)), static_cast<float>(R * r * std::sin(a)),
+                                 static_cast<float>(R * z)});
+  }
+  const PointIndex index(pc);
+  LevelEncodeOptions o;
+  o.levels = 3;
+  o.error = 2e-4;
+  const double diagonal = 2 * R * std::sqrt(3.0);
+  auto enc = encode_levels(control, index, diagonal, o);
+  REQUIRE(enc.ok());
+  const double step = enc.value().levels[0].step;
+  const auto samples = check_quantization(enc.value(), index);
+  double worst_sample = 0, worst_vertex = 0;
+  for (size_t l = 1; l <= 3; ++l) {
+    const std::vector<OddVertex> odd = odd_vertices(enc.value().positions[l - 1], enc.value().triangles[l - 1]);
+    const size_t evens = enc.value().positions[l - 1].size() / 3;
+    for (size_t e = 0; e < odd.size(); ++e) {
+      const double* p = odd[e].point;
+      const double* n = odd[e].normal;
+      const double pn = p[0] * n[0] + p[1] * n[1] + p[2] * n[2];
+      const double pp = p[0] * p[0] + p[1] * p[1] + p[2] * p[2];
+      const double root = std::sqrt(pn * pn - pp + R * R);
+      const double t = std::abs(-pn + root) < std::abs(-pn - root) ? -pn + root : -pn - root;
+      worst_sample = std::max(worst_sample, std::abs(samples[l - 1][e] - t));
+      const float* m = &enc.value().positions[l][3 * (evens + e)];
+      worst_vertex = std::max(worst_vertex, std::abs(std::sqrt(double{m[0]} * m[0] + double{m[1]} * m[1] + double{m[2]} * m[2]) - R));
+    }
+  }
+  // Measured: the sampled distances are within 2.4e-4 R of the exact ones
+  // (the triangles of points are chords of the sphere; the step is 1.4e-3
+  // R); bound 2x that.  Every odd vertex of levels 1-3 then lies within
+  // step / 2 of its sample, so within step / 2 + the sampling error of the
+  // sphere (measured 7.8e-4 R against 9.3e-4 R allowed).
+  INFO("step " << step / R << " R, worst sample error " << worst_sample / R << " R, worst vertex " << worst_vertex / R << " R");
+  CHECK(worst_sample < 5e-4 * R);
+  CHECK(worst_vertex <= 0.5 * step + worst_sample + 1e-6 * R);
+}
+
+TEST_CASE("sampler on a thin slab: the sheet nearer the vertex wins") {
+  // Two sheets inside the cylinder: three points at z = 0.1 on a circle of
+  // radius 0.03 around the line and three at z = -0.3 on a circle of 0.01.
+  // Of the triangles of these points that the line crosses, the top one
+  // hits at 0.1, the bottom one at -0.3 and the mixed ones at -0.2: the
+  // nearest hit, the top sheet's, is the sample, whichever way the normal
+  // points.
+  PointCloud pc;
+  for (int i = 0; i < 3; ++i) {
+    const double a = 2 * std::numbers::pi * i / 3;
+    pc.xyz.insert(pc.xyz.end(), {static_cast<float>(0.03 * std::cos(a)), static_cast<float>(0.03 * std::sin(a)), 0.1f});
+    pc.xyz.insert(pc.xyz.end(), {static_cast<float>(0.01 * std::cos(a + std::numbers::pi / 3)),
+                                 static_cast<float>(0.01 * std::sin(a + std::numbers::pi / 3)), -0.3f});
+  }
+  const PointIndex index(pc);
+  const double p[3] = {0, 0, 0}, up[3] = {0, 0, 1}, down[3] = {0, 0, -1};
+  const Sample a = sample_displacement(index, p, up, 0.2, 0.5);
+  CHECK(a.source == SampleSource::triangle);
+  CHECK(a.distance == Approx(0.1).margin(1e-7));
+  const Sample b = sample_displacement(index, p, down, 0.2, 0.5);
+  CHECK(b.source == SampleSource::triangle);
+  CHECK(b.distance == Approx(-0.1).margin(1e-7));
+  CHECK(!a.clamped);
+}
