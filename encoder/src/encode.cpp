@@ -35,7 +35,9 @@ Result<Encoding> encode_points(const PointIndex& input_index, const EncodeOption
   // when some were dropped.  `e.points` moves with `e` on return, after
   // `cleaned` (which refers to it) is gone.
   if (o.on_progress && o.outliers.enabled) o.on_progress("removing outliers");
-  e.points = remove_outliers(input_index, o.outliers, &e.outliers);
+  OutlierOptions outliers = o.outliers;
+  outliers.threads = std::max(1u, o.threads);
+  e.points = remove_outliers(input_index, outliers, &e.outliers);
   std::unique_ptr<PointIndex> cleaned;
   if (e.points.size() != input_index.points().size()) cleaned = std::make_unique<PointIndex>(e.points);
   const PointIndex& index = cleaned ? *cleaned : input_index;

@@ -52,11 +52,18 @@ ScanCheck check_scan(const Encoding& e, const PointIndex& index) {
   c.open = !info.closed;
   c.boundary_loops = c.open ? static_cast<uint32_t>(boundary_loops(finest).size()) : 0;
   // Clusters as the outlier pass counts them; tiny ones are not objects.
-  uint32_t count = 0;
-  const std::vector<uint32_t> cluster = point_clusters(index, cluster_radius(index), &count);
-  std::vector<size_t> size(count, 0);
-  for (uint32_t id : cluster) ++size[id];
-  for (size_t s : size) c.point_clusters += static_cast<double>(s) >= 0.02 * static_cast<double>(pc.size());
+  // When that pass ran, its count stands (it dropped the small ones, which
+  // leaves the others as they were), and a second pass over a large scan
+  // is saved.
+  if (e.outliers.clustered && e.outliers.kept() == pc.size()) {
+    c.point_clusters = static_cast<uint32_t>(e.outliers.clusters - e.outliers.clusters_dropped);
+  } else {
+    uint32_t count = 0;
+    const std::vector<uint32_t> cluster = point_clusters(index, cluster_radius(index), &count);
+    std::vector<size_t> size(count, 0);
+    for (uint32_t id : cluster) ++size[id];
+    for (size_t s : size) c.point_clusters += static_cast<double>(s) >= 0.02 * static_cast<double>(pc.size());
+  }
   if (!e.levels.stats.empty()) {
     const LevelStats& last = e.levels.stats.back();
     c.clamped_share = static_cast<double>(last.clamped) / static_cast<double>(std::max<size_t>(1, last.odd));

@@ -32,6 +32,7 @@ struct OutlierOptions {
   // one piece.
   double link = 3.0;
   double min_cluster_share = 0.02;
+  unsigned threads = 1;  // for the per-point tests; the result is the same on any number
 };
 
 struct OutlierStats {
@@ -40,6 +41,7 @@ struct OutlierStats {
   size_t clusters = 0;          // clusters found among the rest
   size_t clusters_dropped = 0;  // of them, dropped as too small
   size_t cluster_points = 0;    // points in the dropped clusters
+  bool clustered = false;       // the cluster test ran (clusters - clusters_dropped is what stayed)
   size_t kept() const { return points_in - isolated - cluster_points; }
 };
 
