@@ -154,7 +154,8 @@ int run_encode(const std::vector<std::string_view>& args) {
   row("read points", read_s, nullptr, std::to_string(pc.size()) + " points");
   if (options.outliers.enabled)
     row("outliers", e.seconds.outliers, nullptr,
-        std::to_string(e.outliers.isolated) + " isolated points dropped, " + std::to_string(e.outliers.cluster_points) +
+        (e.outliers.duplicates ? std::to_string(e.outliers.duplicates) + " duplicates merged, " : std::string()) +
+            std::to_string(e.outliers.isolated) + " isolated points dropped, " + std::to_string(e.outliers.cluster_points) +
             " in " + std::to_string(e.outliers.clusters_dropped) + " small cluster(s) of " + std::to_string(e.outliers.clusters));
   row("choose grid", st.seconds.grid, nullptr, "grid " + std::to_string(st.carving.grid) + (options.control.grid ? " (given)" : " (automatic)"));
   row("cell carving", st.seconds.carve, nullptr,

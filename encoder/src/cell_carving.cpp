@@ -290,7 +290,9 @@ CarvingChoice choose_carving(const PointCloud& pc, const PointIndex& index, int 
   };
   // Grids are tried two at a time, one per core; the choice is the same as
   // trying them one by one.
-  std::vector<Trial> tried{trial(grids[0])};
+  std::vector<Trial> tried;
+  tried.reserve(grids.size());
+  tried.push_back(trial(grids[0]));
   const auto ensure = [&](size_t i) {
     if (i + 1 < grids.size() && tried.size() == i) {
       // A future, not a bare thread: an exception here (out of memory)
@@ -320,12 +322,13 @@ CarvingChoice choose_carving(const PointCloud& pc, const PointIndex& index, int 
   std::vector<size_t> good{0};  // trials that did not leak, in order
   for (size_t i = 1; i < grids.size(); ++i) {
     ensure(i);
-    const Trial& last = tried[good.back()];
-    if (leaks(tried[i], last)) {
+    // By index: ensure() may grow `tried`, which moves its trials.
+    const size_t last = good.back();
+    if (leaks(tried[i], tried[last])) {
       size_t closed_again = 0;
       for (size_t j = i + 1; j <= i + 2 && j < grids.size() && !closed_again; ++j) {
         ensure(j);
-        if (!leaks(tried[j], last)) closed_again = j;
+        if (!leaks(tried[j], tried[last])) closed_again = j;
       }
       if (!closed_again) {
         CarvingChoice chosen = std::move(tried[good.back()].carving);

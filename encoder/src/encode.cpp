@@ -117,7 +117,8 @@ Result<Encoding> encode_points(const PointIndex& input_index, const EncodeOption
   e.seconds.check = since(check_start);
   c.metadata.push_back({"surface", e.stages.surface_reason});
   if (e.outliers.points_in != e.outliers.kept())
-    c.metadata.push_back({"outliers", std::to_string(e.outliers.isolated) + " isolated points and " +
+    c.metadata.push_back({"outliers", std::to_string(e.outliers.duplicates) + " duplicates, " +
+                                          std::to_string(e.outliers.isolated) + " isolated points and " +
                                           std::to_string(e.outliers.cluster_points) + " points in " +
                                           std::to_string(e.outliers.clusters_dropped) + " small clusters dropped of " +
                                           std::to_string(e.outliers.points_in)});

@@ -139,6 +139,30 @@ PointCloud remove_outliers(const PointIndex& index, const OutlierOptions& o, Out
   const uint32_t k = std::max<uint32_t>(1, o.k);
   if (!o.enabled || n <= size_t{k} + 4) return pc;
 
+  // Exact duplicates (a mesh's vertices repeated per face) carry nothing
+  // and make every spacing figure zero: merged first, then the rest runs
+  // on the distinct points.
+  {
+    std::vector<uint32_t> order(n);
+    std::iota(order.begin(), order.end(), 0u);
+    const auto at = [&](uint32_t i) { return std::array<float, 3>{pc.xyz[3 * i], pc.xyz[3 * i + 1], pc.xyz[3 * i + 2]}; };
+    std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) { return at(a) != at(b) ? at(a) < at(b) : a < b; });
+    std::vector<uint8_t> first(n, 1);
+    size_t duplicates = 0;
+    for (size_t j = 1; j < n; ++j)
+      if (at(order[j]) == at(order[j - 1])) first[order[j]] = 0, ++duplicates;
+    if (duplicates > 0) {
+      const PointCloud distinct = subset(pc, first);
+      const PointIndex distinct_index(distinct);
+      OutlierStats inner;
+      PointCloud out = remove_outliers(distinct_index, o, &inner);
+      inner.points_in = n;
+      inner.duplicates = duplicates;
+      if (stats) *stats = inner;
+      return out;
+    }
+  }
+
   // Mean distance to the k nearest other points, for every point.
   std::vector<double> reach(n);
   // Flat k-per-point neighbour lists (UINT32_MAX where fewer were found).

@@ -63,6 +63,9 @@ ScanCheck check_scan(const Encoding& e, const PointIndex& index) {
     std::vector<size_t> size(count, 0);
     for (uint32_t id : cluster) ++size[id];
     for (size_t s : size) c.point_clusters += static_cast<double>(s) >= 0.02 * static_cast<double>(pc.size());
+    // No cluster that large: the points are scattered (a coarse mesh's
+    // vertices), and their number of pieces is the figure to show.
+    if (c.point_clusters == 0) c.point_clusters = count;
   }
   if (!e.levels.stats.empty()) {
     const LevelStats& last = e.levels.stats.back();
@@ -110,7 +113,7 @@ ScanCheck check_scan(const Encoding& e, const PointIndex& index) {
   // its rim and the last points it leaves about 1.4 times its area bare.
   if (c.uncovered_share > kMaxUncovered + 1.5 * e.stages.bridged_area)
     warn("uncovered", fmt("%.1f%%", 100 * c.uncovered_share) + " of the surface has no point within " +
-                          fmt("%.1f", reach / c.spacing) + " point spacings (bound " + fmt("%.0f%%", 100 * kMaxUncovered) +
+                          (c.spacing > 0 ? fmt("%.1f", reach / c.spacing) + " point spacings" : fmt("%.3g", reach) + " model units") + " (bound " + fmt("%.0f%%", 100 * kMaxUncovered) +
                           (e.stages.bridged_area > 0 ? fmt(" plus 1.5 times the %.1f%% bridged over holes", 100 * e.stages.bridged_area) : "") +
                           "): surface invented where nothing was scanned (holes, an open patch closed over, or stray points)");
   if (c.spacing > 0 && c.points_to_surface > kMaxDistance * c.spacing)
@@ -118,7 +121,9 @@ ScanCheck check_scan(const Encoding& e, const PointIndex& index) {
                          " point spacings from the surface on average (bound " + fmt("%.0f", kMaxDistance) +
                          "): parts of the scan are not represented (noise, thin parts, or a surface that missed them)");
   if (e.outliers.points_in > 0) {
-    const double dropped = static_cast<double>(e.outliers.points_in - e.outliers.kept()) / e.outliers.points_in;
+    // Of the distinct points: merged duplicates lose nothing.
+    const double distinct = static_cast<double>(e.outliers.points_in - e.outliers.duplicates);
+    const double dropped = static_cast<double>(e.outliers.isolated + e.outliers.cluster_points) / std::max(1.0, distinct);
     if (dropped > kMaxDropped)
       warn("outliers", fmt("%.1f%%", 100 * dropped) + " of the points were dropped as outliers (bound " +
                            fmt("%.0f%%", 100 * kMaxDropped) +

@@ -37,16 +37,17 @@ struct OutlierOptions {
 
 struct OutlierStats {
   size_t points_in = 0;
+  size_t duplicates = 0;        // exact repeats of an earlier point, merged into it
   size_t isolated = 0;          // points dropped as isolated
   size_t clusters = 0;          // clusters found among the rest
   size_t clusters_dropped = 0;  // of them, dropped as too small
   size_t cluster_points = 0;    // points in the dropped clusters
   bool clustered = false;       // the cluster test ran (clusters - clusters_dropped is what stayed)
-  size_t kept() const { return points_in - isolated - cluster_points; }
+  size_t kept() const { return points_in - duplicates - isolated - cluster_points; }
 };
 
 // The points that survive both tests, in input order (normals kept along
-// when present).  With options.enabled false, a copy of `points`.  `index`
+// when present), exact duplicates merged into their first occurrence.  With options.enabled false, a copy of `points`.  `index`
 // must be built on `points`.  Never returns fewer than 4 points unless given
 // fewer: if the tests would leave fewer, nothing is dropped.
 PointCloud remove_outliers(const PointIndex& index, const OutlierOptions& options = {}, OutlierStats* stats = nullptr);
