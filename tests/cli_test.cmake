@@ -152,7 +152,7 @@ file(READ ${example} clean)
 file(WRITE ${WORK}/stray.xyz "${clean}${stray}")
 expect_run(0 "12 isolated points dropped" ${DBSS} encode ${WORK}/stray.xyz -o ${WORK}/stray.dbss --levels 1)
 expect_run(0 "self-check: ok: 1 component\\(s\\)" ${DBSS} encode ${WORK}/stray.xyz -o ${WORK}/stray.dbss --levels 1 --strict)
-expect_run(0 "outliers = 12 isolated points" ${DBSS} info ${WORK}/stray.dbss)
+expect_run(0 "outliers = 0 duplicates, 12 isolated points" ${DBSS} info ${WORK}/stray.dbss)
 # A carving grid far too coarse for the example: the self-check names what
 # is wrong, the file records it, and --strict writes nothing.
 expect_run(0 "warning \\(distance\\): the points lie [0-9.]+ point spacings" ${DBSS} encode ${example} -o ${WORK}/coarse.dbss --levels 1 --grid 6)
