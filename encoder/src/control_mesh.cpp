@@ -9,6 +9,7 @@
 
 #include "dbss/encoder/mesh_ops.h"
 #include "dbss/encoder/open_surface.h"
+#include "dbss/encoder/surface_distance.h"
 #include "dbss/encoder/point_index.h"
 #include "dbss/encoder/projection.h"
 #include "dbss/encoder/shell_mesh.h"
@@ -25,9 +26,9 @@ constexpr double kMaybeLeaked = 1.0;
 // Share of the shell behind the points (SheetCut::behind) that counts as a
 // second side.
 constexpr double kLeakCut = 0.01;
-// Mean distance, in median point spacings, from the points to a one-sided
-// sheet above which the sheet does not explain them.
-constexpr double kSheetFit = 1.5;
+// Share of the points farther than two median spacings from a one-sided
+// sheet above which the sheet does not explain them (see build_sheet).
+constexpr double kSheetMiss = 0.12;
 // Share of the area bridged above which a leak at a finer grid than the
 // search's closed one is not worth it (the bunny's base: 0.3%).
 constexpr double kMaxLeakBridged = 0.02;
@@ -141,16 +142,25 @@ bool build_sheet(ControlMeshStages& s, const PointIndex& index, const ControlMes
   // The slab's rim overhangs the last points by up to a cell or two.
   const size_t trimmed = trim_unsupported(sheet, index, std::max(2 * spacing, 0.75 * cell));
   if (sheet.triangle_count() == 0) return fall_back("closed: no part of the one-sided sheet lies on the points");
-  // Does one side explain the points?  A thin closed part (a plate thinner
-  // than two cells) carves like a sheet too, but half its points then lie a
-  // plate's thickness away.
-  const double to_sheet = points_to_mesh(index.points().xyz, sheet).mean;
-  // Measured in point spacings: a thin plate's one side leaves its points
-  // 2.2-2.5 spacings away on average, open scans 0.04-0.8 (a noisy lidar
-  // scan the most).
-  if (o.surface == SurfaceMode::automatic && to_sheet > kSheetFit * spacing)
-    return fall_back("closed: the carving encloses almost no volume, but one side of it leaves the points " +
-                     fmt("%.2g", to_sheet / spacing) + " spacings away on average (two sides close together)");
+  // Does one side explain the points?  A thin closed part (a plate, a
+  // blade thinner than two cells) carves like a sheet too, but then a large
+  // share of its points (those of the other side) lie a thickness away.
+  // Points farther than two spacings from the sheet: thin parts 16-43%
+  // (oni, a rotor, a blade, a plate); one-sided scans 0-0.2%, a noisy
+  // lidar scan with walls and roofs 8%.
+  size_t far_points = 0;
+  {
+    const TriangleTree tree(sheet);
+    const std::vector<float>& xyz = index.points().xyz;
+    for (size_t i = 0; i < xyz.size() / 3; ++i) {
+      const double p[3] = {xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]};
+      far_points += tree.distance(p) > 2 * spacing;
+    }
+  }
+  const double far_share = static_cast<double>(far_points) / static_cast<double>(std::max<size_t>(1, index.points().size()));
+  if (o.surface == SurfaceMode::automatic && far_share > kSheetMiss)
+    return fall_back("closed: the carving encloses almost no volume, but " + fmt("%.0f", 100 * far_share) +
+                     "% of the points lie over two spacings from one side of it (two sides close together)");
   // Pinholes (a loop a few cells round) are gaps in the sampling or notches
   // the cut left, not where the scan ends: closed in every mode.
   const HoleFill pinholes = fill_holes(sheet, cell, kPinhole * cell);
