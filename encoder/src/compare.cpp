@@ -1,5 +1,7 @@
 #include "dbss/encoder/compare.h"
 
+#include <memory>
+
 #include "dbss/decoder/control_mesh.h"
 #include "dbss/encoder/control_mesh_codec.h"
 #include "dbss/encoder/dss_baseline.h"
@@ -16,12 +18,18 @@ RelativeError relative(const PointIndex& index, const TriangleMesh& mesh, double
 
 Result<Comparison> compare_representations(const PointCloud& points, const EncodeOptions& eo, const CompareOptions& o) {
   if (points.size() == 0) return Status(ErrorCode::invalid_argument, "no points");
-  const PointIndex index(points);
-  auto encoded = encode_points(index, eo);
+  const PointIndex input_index(points);
+  auto encoded = encode_points(input_index, eo);
   if (!encoded.ok()) return encoded.status();
   Comparison c;
   c.encoding = std::move(encoded).value();
   const Encoding& e = c.encoding;
+  // Every representation is sampled and measured on the points dbss was
+  // built from: stray points the encoder dropped would otherwise pull the
+  // baseline's samples and everyone's errors.
+  std::unique_ptr<PointIndex> cleaned;
+  if (e.points.size() != points.size()) cleaned = std::make_unique<PointIndex>(e.points);
+  const PointIndex& index = cleaned ? *cleaned : input_index;
   const uint32_t levels = static_cast<uint32_t>(e.levels.levels.size());
   const float step = levels ? e.levels.levels[0].step : 0.0f;
   std::vector<DssLevel> dss;
