@@ -170,7 +170,10 @@ int run_encode(const std::vector<std::string_view>& args) {
   if (st.wrap_stats.untangled) wrap_notes += ", " + std::to_string(st.wrap_stats.untangled) + " folded edges smoothed";
   if (st.wrap_stats.undone) wrap_notes += ", " + std::to_string(st.wrap_stats.undone) + " moves undone (triangles crossed)";
   row("shrink-wrapping", st.seconds.shrink_wrap, &st.wrapped, wrap_notes);
-  row("surface", 0, nullptr, st.surface_reason);
+  std::string surface_notes = st.surface_reason;
+  if (st.cut_triangles) surface_notes += " (" + std::to_string(st.cut_triangles) + " shell triangles cut away" +
+                                         (st.pinholes ? ", " + std::to_string(st.pinholes) + " pinholes closed" : "") + ")";
+  row("surface", 0, nullptr, surface_notes);
   row("QEM simplification", st.seconds.simplify, &st.simplified, "");
   row("projection", st.seconds.project, &st.control, std::to_string(st.projection_skipped) + " vertices kept off the points");
   row("Draco", e.seconds.draco, &e.control, std::to_string(e.contents.control_mesh.size()) + " bytes of Draco, " + std::to_string(options.control_bits) + "-bit positions");

@@ -55,8 +55,11 @@ Status check_stage(const TriangleMesh& m, const MeshInfo& want, const char* stag
   return {};
 }
 
-size_t count_state(const CellGrid& g, CellGrid::State a, CellGrid::State b) {
-  return static_cast<size_t>(std::count_if(g.state.begin(), g.state.end(), [&](uint8_t x) { return x == a || x == b; }));
+// Empty cells the carving did not reach (and cells filled to enclose them).
+size_t inside_cells(const CellGrid& g) {
+  return static_cast<size_t>(std::count_if(g.state.begin(), g.state.end(), [](uint8_t x) {
+    return x == CellGrid::kInside || x == CellGrid::kFilled;
+  }));
 }
 
 std::string fmt(const char* f, double x) {
@@ -253,9 +256,8 @@ Result<ControlMeshStages> build_control_mesh(const PointIndex& index, const Cont
   // Open or closed: a carving that encloses next to no volume is a slab
   // around a sheet of points (an open scan, or a closed one whose carving
   // leaked through a hole).
-  const size_t occupied = count_state(s.cells, CellGrid::kOccupied, CellGrid::kOccupied);
   const double inside_share =
-      static_cast<double>(count_state(s.cells, CellGrid::kInside, CellGrid::kFilled)) / std::max<size_t>(1, occupied);
+      static_cast<double>(inside_cells(s.cells)) / static_cast<double>(std::max<size_t>(1, s.carving.occupied));
   bool sheet = false;
   if (o.surface == SurfaceMode::open || inside_share < kMaybeLeaked || leaking_grid) {
     stage("cutting the open sheet");

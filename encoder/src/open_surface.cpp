@@ -346,13 +346,6 @@ size_t trim_unsupported(TriangleMesh& m, const PointIndex& index, double reach) 
   return removed;
 }
 
-size_t clean_sheet(TriangleMesh& m) {
-  std::vector<uint8_t> alive(m.triangle_count(), 1);
-  const size_t removed = clean_alive(m, alive);
-  compact(m, alive);
-  return removed;
-}
-
 std::vector<std::vector<uint32_t>> boundary_loops(const TriangleMesh& m) {
   const std::vector<uint8_t> all(m.triangle_count(), 1);
   const std::vector<uint32_t> adj = across(m, all);
@@ -379,17 +372,19 @@ std::vector<std::vector<uint32_t>> boundary_loops(const TriangleMesh& m) {
   return loops;
 }
 
+double triangle_area(const TriangleMesh& m, size_t t) {
+  const float* a = &m.positions[3 * m.triangles[3 * t]];
+  const float* b = &m.positions[3 * m.triangles[3 * t + 1]];
+  const float* c = &m.positions[3 * m.triangles[3 * t + 2]];
+  const double u[3] = {double{b[0]} - a[0], double{b[1]} - a[1], double{b[2]} - a[2]};
+  const double v[3] = {double{c[0]} - a[0], double{c[1]} - a[1], double{c[2]} - a[2]};
+  const double x = u[1] * v[2] - u[2] * v[1], y = u[2] * v[0] - u[0] * v[2], z = u[0] * v[1] - u[1] * v[0];
+  return 0.5 * std::sqrt(x * x + y * y + z * z);
+}
+
 double mesh_area(const TriangleMesh& m) {
   double area = 0;
-  for (size_t t = 0; t < m.triangle_count(); ++t) {
-    const float* a = &m.positions[3 * m.triangles[3 * t]];
-    const float* b = &m.positions[3 * m.triangles[3 * t + 1]];
-    const float* c = &m.positions[3 * m.triangles[3 * t + 2]];
-    const double u[3] = {double{b[0]} - a[0], double{b[1]} - a[1], double{b[2]} - a[2]};
-    const double v[3] = {double{c[0]} - a[0], double{c[1]} - a[1], double{c[2]} - a[2]};
-    const double x = u[1] * v[2] - u[2] * v[1], y = u[2] * v[0] - u[0] * v[2], z = u[0] * v[1] - u[1] * v[0];
-    area += 0.5 * std::sqrt(x * x + y * y + z * z);
-  }
+  for (size_t t = 0; t < m.triangle_count(); ++t) area += triangle_area(m, t);
   return area;
 }
 
@@ -500,10 +495,7 @@ HoleFill fill_holes(TriangleMesh& m, double edge, double max_perimeter) {
       umbrella(v);
     }
   }
-  TriangleMesh patch;
-  patch.positions = m.positions;
-  patch.triangles.assign(m.triangles.begin() + 3 * triangles_before, m.triangles.end());
-  out.area = mesh_area(patch);
+  for (size_t t = triangles_before; t < m.triangle_count(); ++t) out.area += triangle_area(m, t);
   return out;
 }
 

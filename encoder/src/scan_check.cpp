@@ -83,10 +83,7 @@ ScanCheck check_scan(const Encoding& e, const PointIndex& index) {
     const float* d = &finest.positions[3 * finest.triangles[3 * t + 2]];
     float centre[3];
     for (int k = 0; k < 3; ++k) centre[k] = (a[k] + b[k] + d[k]) / 3.0f;
-    const double u[3] = {double{b[0]} - a[0], double{b[1]} - a[1], double{b[2]} - a[2]};
-    const double v[3] = {double{d[0]} - a[0], double{d[1]} - a[1], double{d[2]} - a[2]};
-    const double area = 0.5 * std::sqrt(std::pow(u[1] * v[2] - u[2] * v[1], 2) + std::pow(u[2] * v[0] - u[0] * v[2], 2) +
-                                        std::pow(u[0] * v[1] - u[1] * v[0], 2));
+    const double area = triangle_area(finest, t);
     const uint32_t p = index.nearest(centre);
     double d2 = 0;
     for (int k = 0; k < 3; ++k) d2 += std::pow(centre[k] - double{pc.xyz[3 * p + k]}, 2);

@@ -54,11 +54,6 @@ SheetCut cut_to_sheet(const TriangleMesh& shell, const PointIndex& index, const 
 // then the same clean-up as cut_to_sheet.  Returns how many went.
 size_t trim_unsupported(TriangleMesh& sheet, const PointIndex& index, double reach);
 
-// The clean-up alone: drops triangles with two or more boundary edges and
-// all but the largest fan at any vertex with several, repeatedly, then
-// unreferenced vertices.  Returns how many triangles went.
-size_t clean_sheet(TriangleMesh& m);
-
 // Boundary loops of an oriented manifold, each as its vertices in the order
 // of the boundary half-edges (the triangle on the left of the walk).
 std::vector<std::vector<uint32_t>> boundary_loops(const TriangleMesh& m);
@@ -70,16 +65,16 @@ struct HoleFill {
   std::vector<uint32_t> added_vertices;  // the new vertices (no points support them)
 };
 
-// Closes every boundary loop with a membrane: concentric rings of about
-// `edge` spacing from the loop towards its centroid, the innermost closed by
-// a zig-zag strip, then smoothed (each new
-// vertex to its neighbours' mean, the loop held still), so the patch is as
-// flat as the loop lets it be.  The result is closed and keeps the
-// orientation.
-// Only loops shorter than `max_perimeter` (model units) are closed.
+// Closes every boundary loop shorter than `max_perimeter` (model units)
+// with a patch: concentric rings about two `edge`s apart from the loop
+// towards its centroid, the innermost closed by a zig-zag strip; the new
+// vertices relax to a membrane (the loop held still), then are faired so
+// the patch's slope follows the surface around the hole.  The result keeps
+// the orientation.
 HoleFill fill_holes(TriangleMesh& m, double edge, double max_perimeter = 1e300);
 
-// Surface area, model units^2.
+// Area of triangle t, and of the whole mesh; model units^2.
+double triangle_area(const TriangleMesh& m, size_t t);
 double mesh_area(const TriangleMesh& m);
 
 }  // namespace dbss
