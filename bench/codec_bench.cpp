@@ -17,7 +17,7 @@
 
 #include "dbss/decoder/progressive.h"
 #include "timing.h"
-#include "dbss/encoder/compare.h"
+#include "dbss/measure/compare.h"
 #include "dbss/encoder/control_mesh_codec.h"
 #include "dbss/encoder/point_input.h"
 

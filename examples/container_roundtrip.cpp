@@ -14,6 +14,7 @@
 #include "dbss/encoder/control_mesh_codec.h"
 #include "dbss/format/reader.h"
 #include "dbss/format/writer.h"
+#include "dbss/io/file.h"
 
 namespace {
 
@@ -74,14 +75,14 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "%s\n", bytes.status().to_string().c_str());
     return 2;
   }
-  if (auto s = dbss::format::write_file_atomic(out, bytes.value()); !s.ok()) {
+  if (auto s = dbss::io::write_file_atomic(out, bytes.value()); !s.ok()) {
     std::fprintf(stderr, "%s\n", s.to_string().c_str());
     return 1;
   }
 
   // Read back through the file system, one byte range per chunk as a
   // streaming client would see them.
-  auto file = dbss::format::read_file(out);
+  auto file = dbss::io::read_file(out);
   if (!file.ok()) {
     std::fprintf(stderr, "%s\n", file.status().to_string().c_str());
     return 1;

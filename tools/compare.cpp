@@ -3,7 +3,7 @@
 #include <cstdio>
 #include <string>
 
-#include "dbss/encoder/compare.h"
+#include "dbss/measure/compare.h"
 #include "dbss/encoder/point_input.h"
 #include "encode_options.h"
 #include "json.h"

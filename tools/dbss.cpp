@@ -7,10 +7,12 @@
 #include <vector>
 
 #include "dbss/format/reader.h"
-#include "compare.h"
 #include "decode.h"
-#include "encode.h"
 #include "info.h"
+#ifdef DBSS_HAVE_ENCODER
+#include "compare.h"
+#include "encode.h"
+#endif
 
 namespace {
 
@@ -47,9 +49,17 @@ int main(int argc, char** argv) {
   args.erase(args.begin());
   try {
     if (cmd == "info") return dbss::tools::run_info(args);
-    if (cmd == "encode") return dbss::tools::run_encode(args);
     if (cmd == "decode") return dbss::tools::run_decode(args);
+#ifdef DBSS_HAVE_ENCODER
+    if (cmd == "encode") return dbss::tools::run_encode(args);
     if (cmd == "compare") return dbss::tools::run_compare(args);
+#else
+    if (cmd == "encode" || cmd == "compare") {
+      std::fprintf(stderr, "dbss %.*s: this dbss was built without the encoder (DBSS_BUILD_ENCODER=OFF)\n",
+                   static_cast<int>(cmd.size()), cmd.data());
+      return 1;
+    }
+#endif
   } catch (const std::exception& e) {
     std::fprintf(stderr, "dbss %.*s: internal error: %s\n", static_cast<int>(cmd.size()), cmd.data(), e.what());
     return 2;

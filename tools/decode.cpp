@@ -4,9 +4,10 @@
 #include <string>
 
 #include "dbss/decoder/progressive.h"
-#include "dbss/encoder/mesh_io.h"
+#include "dbss/io/file.h"
+#include "dbss/io/geometry_files.h"
 #include "dbss/format/reader.h"
-#include "encode_options.h"  // parse_int
+#include "args.h"
 #include "progress.h"
 
 namespace dbss::tools {
@@ -55,7 +56,7 @@ int run_decode(const std::vector<std::string_view>& args) {
   if (input.empty()) return usage("no input file");
   if (output.empty()) return usage("no output file (-o OUT.ply)");
 
-  auto bytes = format::read_file(input);
+  auto bytes = io::read_file(input);
   if (!bytes.ok()) {
     std::fprintf(stderr, "dbss decode: %s\n", bytes.status().message().c_str());
     return 1;

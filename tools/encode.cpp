@@ -9,10 +9,12 @@
 
 #include "dbss/encoder/encode.h"
 #include "dbss/encoder/point_index.h"
-#include "dbss/encoder/mesh_io.h"
+#include "dbss/encoder/cell_dump.h"
 #include "dbss/encoder/mesh_ops.h"
 #include "dbss/encoder/point_input.h"
 #include "dbss/format/writer.h"
+#include "dbss/io/file.h"
+#include "dbss/io/geometry_files.h"
 
 namespace dbss::tools {
 
@@ -125,7 +127,7 @@ int run_encode(const std::vector<std::string_view>& args) {
                  e.check.warnings.size(), output.c_str());
     return 1;
   }
-  if (Status s = format::write_file_atomic(output, e.bytes); !s.ok()) {
+  if (Status s = io::write_file_atomic(output, e.bytes); !s.ok()) {
     std::fprintf(stderr, "dbss encode: %s\n", s.message().c_str());
     return 1;
   }
@@ -135,10 +137,10 @@ int run_encode(const std::vector<std::string_view>& args) {
     Status s;
     if (s.ok()) s = write_cells_obj(d + "1-occupied-cells.obj", st.cells, true);
     if (s.ok()) s = write_cells_obj(d + "2-carved-cells.obj", st.cells, false);
-    if (s.ok()) s = write_obj(d + "3-triangulated.obj", st.shell);
-    if (s.ok()) s = write_obj(d + "4-shrink-wrapped.obj", st.wrapped);
-    if (s.ok()) s = write_obj(d + "5-simplified.obj", st.simplified);
-    if (s.ok()) s = write_obj(d + "6-control.obj", e.control);
+    if (s.ok()) s = write_mesh(d + "3-triangulated.obj", st.shell);
+    if (s.ok()) s = write_mesh(d + "4-shrink-wrapped.obj", st.wrapped);
+    if (s.ok()) s = write_mesh(d + "5-simplified.obj", st.simplified);
+    if (s.ok()) s = write_mesh(d + "6-control.obj", e.control);
     if (!s.ok()) {
       std::fprintf(stderr, "dbss encode: %s\n", s.message().c_str());
       return 1;

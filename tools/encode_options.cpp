@@ -29,19 +29,6 @@ const char* const kEncodeOptionsHelp =
     "  --keep-outliers        keep every point (default: isolated points and\n"
     "                         clusters under 2% of the points are dropped)\n";
 
-bool parse_int(std::string_view s, long lo, long hi, long& out) {
-  const auto r = std::from_chars(s.data(), s.data() + s.size(), out);
-  return r.ec == std::errc() && r.ptr == s.data() + s.size() && out >= lo && out <= hi;
-}
-
-namespace {
-bool parse_double(std::string_view s, double& out) {
-  const std::string text(s);
-  char* end = nullptr;
-  out = std::strtod(text.c_str(), &end);
-  return !text.empty() && end == text.c_str() + text.size();
-}
-}  // namespace
 
 OptionParse parse_encode_option(const std::vector<std::string_view>& args, size_t& i, EncodeOptions& o,
                                 std::string& error) {

@@ -5,6 +5,7 @@
 #include <string_view>
 #include <vector>
 
+#include "args.h"
 #include "dbss/encoder/encode.h"
 
 namespace dbss::tools {
@@ -19,8 +20,5 @@ enum class OptionParse { not_mine, ok, bad };
 // its value (advancing i) into `o`; on a bad value fills `error`.
 OptionParse parse_encode_option(const std::vector<std::string_view>& args, size_t& i, EncodeOptions& o,
                                 std::string& error);
-
-// Whole number in [lo, hi], nothing else in `s` (also decode's --level).
-bool parse_int(std::string_view s, long lo, long hi, long& out);
 
 }  // namespace dbss::tools

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "dbss/format/reader.h"
+#include "dbss/io/file.h"
 
 namespace dbss::tools {
 
@@ -53,7 +54,7 @@ int run_info(const std::vector<std::string_view>& args) {
     return 1;
   }
   const format::Limits limits;
-  auto bytes = format::read_file(path, limits.max_file_size);
+  auto bytes = io::read_file(path, limits.max_file_size);
   if (!bytes.ok()) {
     std::fprintf(stderr, "dbss info: %s\n", bytes.status().message().c_str());
     return 1;

@@ -9,7 +9,7 @@
 
 #include "dbss/encoder/mesh_ops.h"
 #include "dbss/encoder/open_surface.h"
-#include "dbss/encoder/surface_distance.h"
+#include "dbss/encoder/triangle_tree.h"
 #include "dbss/encoder/point_index.h"
 #include "dbss/encoder/projection.h"
 #include "dbss/encoder/shell_mesh.h"

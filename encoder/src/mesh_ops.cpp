@@ -7,7 +7,7 @@
 #include <map>
 #include <numbers>
 
-#include "dbss/encoder/surface_distance.h"
+#include "dbss/encoder/triangle_tree.h"
 
 namespace dbss {
 

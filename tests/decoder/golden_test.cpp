@@ -14,6 +14,7 @@
 #include "dbss/decoder/progressive.h"
 #include "dbss/format/reader.h"
 #include "dbss/format/writer.h"
+#include "dbss/io/file.h"
 #include "file_builder.h"
 
 using namespace dbss;
@@ -57,7 +58,7 @@ std::vector<uint64_t> level_hashes(const std::vector<uint8_t>& file) {
 TEST_CASE("golden files decode to the recorded bits at every level") {
   for (const Golden& g : goldens()) {
     INFO(g.name);
-    auto file = format::read_file(kDir + g.name + ".dbss");
+    auto file = io::read_file(kDir + g.name + ".dbss");
     REQUIRE(file.ok());
     std::ifstream in(kDir + g.name + ".hashes");
     REQUIRE(in);
@@ -71,7 +72,7 @@ TEST_CASE("golden files decode to the recorded bits at every level") {
 TEST_CASE("write golden files", "[.write-golden]") {
   for (const Golden& g : goldens()) {
     const auto bytes = test::build_file(g.mesh, g.levels, g.amplitude, g.step);
-    REQUIRE(format::write_file_atomic(kDir + g.name + ".dbss", bytes).ok());
+    REQUIRE(io::write_file_atomic(kDir + g.name + ".dbss", bytes).ok());
     std::ostringstream text;
     for (uint64_t h : level_hashes(bytes)) {
       char b[32];
@@ -79,6 +80,6 @@ TEST_CASE("write golden files", "[.write-golden]") {
       text << b;
     }
     const std::string s = text.str();
-    REQUIRE(format::write_file_atomic(kDir + g.name + ".hashes", std::vector<uint8_t>(s.begin(), s.end())).ok());
+    REQUIRE(io::write_file_atomic(kDir + g.name + ".hashes", std::vector<uint8_t>(s.begin(), s.end())).ok());
   }
 }

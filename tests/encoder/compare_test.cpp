@@ -7,11 +7,11 @@
 #include "../sampled_shapes.h"
 #include "../shapes.h"
 #include "dbss/decoder/topology.h"
-#include "dbss/encoder/compare.h"
-#include "dbss/encoder/dss_baseline.h"
+#include "dbss/measure/compare.h"
+#include "dbss/measure/dss_baseline.h"
 #include "dbss/encoder/levels.h"
-#include "dbss/encoder/loop_subdivision.h"
-#include "dbss/encoder/surface_distance.h"
+#include "dbss/measure/loop_subdivision.h"
+#include "dbss/measure/surface_distance.h"
 
 using namespace dbss;
 

@@ -12,7 +12,7 @@
 #include "dbss/encoder/control_mesh_codec.h"
 #include "dbss/encoder/encode.h"
 #include "dbss/encoder/levels.h"
-#include "dbss/encoder/surface_distance.h"
+#include "dbss/measure/surface_distance.h"
 #include "dbss/encoder/mesh_ops.h"
 #include "dbss/format/writer.h"
 

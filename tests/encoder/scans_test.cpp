@@ -13,7 +13,7 @@
 #include "dbss/encoder/encode.h"
 #include "dbss/encoder/mesh_ops.h"
 #include "dbss/encoder/shell_mesh.h"
-#include "dbss/encoder/surface_distance.h"
+#include "dbss/measure/surface_distance.h"
 
 using namespace dbss;
 

@@ -135,7 +135,4 @@ class Reader {
 // holds either the complete file or a failed status.
 Reader read_all(std::span<const uint8_t> bytes, const Limits& limits = {});
 
-// Reads a whole file from disk into memory (bounded by limits.max_file_size).
-Result<std::vector<uint8_t>> read_file(const std::string& path, uint64_t max_size = uint64_t{1} << 32);
-
 }  // namespace dbss::format

@@ -57,10 +57,4 @@ std::vector<uint8_t> assemble(std::span<const uint8_t> head_data, std::span<cons
 // imply) and returns invalid_argument naming the first problem.
 Result<std::vector<uint8_t>> serialize(const FileContents& contents, const WriteOptions& options = {});
 
-// Writes `bytes` to a temporary file in the directory of `path`, flushes it
-// to disk and renames it over `path`.  On any failure the temporary file is
-// removed and `path` is left as it was; the Status names the path and the
-// system's reason.
-Status write_file_atomic(const std::string& path, std::span<const uint8_t> bytes);
-
 }  // namespace dbss::format

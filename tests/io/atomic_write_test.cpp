@@ -6,10 +6,13 @@
 
 #include <filesystem>
 
-#include "samples.h"
+#include <cstdint>
+#include <vector>
+
+#include "dbss/io/file.h"
 
 using namespace dbss;
-using namespace dbss::format;
+using namespace dbss::io;
 namespace fs = std::filesystem;
 
 namespace {
@@ -19,13 +22,19 @@ fs::path scratch(const char* name) {
   fs::create_directories(d);
   return d;
 }
+// Bytes of a given size with a pattern, so a short or mixed-up write shows.
+std::vector<uint8_t> bytes_of(size_t n, uint8_t seed) {
+  std::vector<uint8_t> b(n);
+  for (size_t i = 0; i < n; ++i) b[i] = static_cast<uint8_t>(seed + i * 131 + (i >> 8));
+  return b;
+}
 size_t entries(const fs::path& d) { return static_cast<size_t>(std::distance(fs::directory_iterator(d), fs::directory_iterator())); }
 }  // namespace
 
 TEST_CASE("write_file_atomic writes, replaces, and leaves nothing else behind") {
   const fs::path d = scratch("write");
   const std::string path = (d / "a.dbss").string();
-  const auto one = test::small_file(), two = test::big_file();
+  const auto one = bytes_of(300, 1), two = bytes_of(1 << 20, 7);
   REQUIRE(write_file_atomic(path, one).ok());
   CHECK(read_file(path).value() == one);
   REQUIRE(write_file_atomic(path, two).ok());
@@ -37,13 +46,13 @@ TEST_CASE("write_file_atomic writes, replaces, and leaves nothing else behind") 
 TEST_CASE("write_file_atomic failures name the path and keep the old file") {
   const fs::path d = scratch("fail");
   const std::string missing = (d / "no" / "such" / "dir" / "x.dbss").string();
-  const Status s = write_file_atomic(missing, test::small_file());
+  const Status s = write_file_atomic(missing, bytes_of(300, 1));
   CHECK(s.code() == ErrorCode::io);
   CHECK(s.message().find(missing) != std::string::npos);
   CHECK(entries(d) == 0);
   // A directory in the way is refused and untouched.
   fs::create_directory(d / "dir.dbss");
-  const Status t = write_file_atomic((d / "dir.dbss").string(), test::small_file());
+  const Status t = write_file_atomic((d / "dir.dbss").string(), bytes_of(300, 1));
   CHECK(t.code() == ErrorCode::io);
   CHECK(fs::is_directory(d / "dir.dbss"));
   CHECK(entries(d) == 1);
@@ -79,7 +88,7 @@ TEST_CASE("read_file names the file and refuses directories and oversize files")
   CHECK(read_file((d / "absent").string()).status().code() == ErrorCode::io);
   CHECK(read_file((d / "absent").string()).status().message().find("absent") != std::string::npos);
   CHECK(read_file(d.string()).status().code() == ErrorCode::io);
-  REQUIRE(write_file_atomic((d / "f").string(), test::small_file()).ok());
+  REQUIRE(write_file_atomic((d / "f").string(), bytes_of(300, 1)).ok());
   CHECK(read_file((d / "f").string(), 10).status().code() == ErrorCode::limit_exceeded);
   fs::remove_all(d);
 }

@@ -9,9 +9,10 @@
 #include <string_view>
 #include <vector>
 
-#include "dbss/encoder/point_input.h"
+#include "formats.h"
+#include "text.h"
 
-namespace dbss {
+namespace dbss::io_detail {
 
 namespace {
 
@@ -68,10 +69,6 @@ double load(const unsigned char* p, Type t, bool swap) {
     case Type::none: return 0;
   }
   return 0;
-}
-
-Status bad(const std::string& name, const std::string& what) {
-  return Status(ErrorCode::invalid_argument, name + ": " + what);
 }
 
 }  // namespace
@@ -239,4 +236,21 @@ Result<PointCloud> parse_ply(const std::string& name, std::string_view bytes) {
   return c;
 }
 
-}  // namespace dbss
+// Binary little-endian: the smallest and fastest to read back.
+std::string write_ply(const TriangleMesh& m) {
+  std::string out = "ply\nformat binary_little_endian 1.0\ncomment dbss\nelement vertex " + std::to_string(m.vertex_count()) +
+                    "\nproperty float x\nproperty float y\nproperty float z\nelement face " +
+                    std::to_string(m.triangle_count()) + "\nproperty list uchar uint vertex_indices\nend_header\n";
+  auto u32 = [&](uint32_t u) {
+    const char le[4] = {char(u), char(u >> 8), char(u >> 16), char(u >> 24)};
+    out.append(le, 4);
+  };
+  for (float x : m.positions) u32(std::bit_cast<uint32_t>(x));
+  for (size_t f = 0; f < m.triangle_count(); ++f) {
+    out.push_back(3);
+    for (int k = 0; k < 3; ++k) u32(m.triangles[3 * f + k]);
+  }
+  return out;
+}
+
+}  // namespace dbss::io_detail

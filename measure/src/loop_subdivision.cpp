@@ -1,4 +1,4 @@
-#include "dbss/encoder/loop_subdivision.h"
+#include "dbss/measure/loop_subdivision.h"
 
 #include <cmath>
 #include <numbers>

@@ -3,36 +3,11 @@
 // path.
 #pragma once
 
-#include <cstdint>
-#include <vector>
-
 #include "dbss/decoder/mesh.h"
 #include "dbss/encoder/point_index.h"
+#include "dbss/encoder/triangle_tree.h"
 
 namespace dbss {
-
-// Squared distance from p to the closest point of triangle abc (any shape,
-// degenerate included), in binary64.
-double point_triangle_distance2(const double p[3], const double a[3], const double b[3], const double c[3]);
-
-// A bounding-volume hierarchy over a mesh's triangles for exact
-// closest-surface queries.  Keeps its own copy of the triangles' corners.
-class TriangleTree {
- public:
-  explicit TriangleTree(const TriangleMesh& mesh);
-  // Distance from p to the closest point of the surface (infinity for a mesh
-  // without triangles).
-  double distance(const double p[3]) const;
-  size_t triangle_count() const noexcept { return corners_.size() / 9; }
-
- private:
-  struct Node {
-    double lo[3], hi[3];
-    uint32_t first, count;  // leaf: triangles [first, first + count); inner: count == 0, children first, first + 1
-  };
-  std::vector<double> corners_;  // 9 per triangle, in tree order
-  std::vector<Node> nodes_;
-};
 
 // Both directions between the points and a mesh, in model units:
 // points -> mesh is each point's exact distance to the surface; mesh ->

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "dbss/encoder/encode.h"
-#include "dbss/encoder/surface_distance.h"
+#include "dbss/measure/surface_distance.h"
 
 namespace dbss {
 

@@ -1,3 +1,5 @@
+// Whole files in and out through POSIX calls: the format and decoder
+// libraries work on bytes in memory and never touch the file system.
 #include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -6,10 +8,9 @@
 #include <cstring>
 #include <string>
 
-#include "dbss/format/reader.h"
-#include "dbss/format/writer.h"
+#include "dbss/io/file.h"
 
-namespace dbss::format {
+namespace dbss::io {
 
 namespace {
 
@@ -105,4 +106,4 @@ Result<std::vector<uint8_t>> read_file(const std::string& path, uint64_t max_siz
   return data;
 }
 
-}  // namespace dbss::format
+}  // namespace dbss::io

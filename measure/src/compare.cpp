@@ -1,10 +1,10 @@
-#include "dbss/encoder/compare.h"
+#include "dbss/measure/compare.h"
 
 #include <memory>
 
 #include "dbss/decoder/control_mesh.h"
 #include "dbss/encoder/control_mesh_codec.h"
-#include "dbss/encoder/dss_baseline.h"
+#include "dbss/measure/dss_baseline.h"
 #include "dbss/encoder/point_index.h"
 
 namespace dbss {

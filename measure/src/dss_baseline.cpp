@@ -1,11 +1,11 @@
-#include "dbss/encoder/dss_baseline.h"
+#include "dbss/measure/dss_baseline.h"
 
 #include <algorithm>
 #include <cmath>
 
 #include "dbss/decoder/topology.h"
 #include "dbss/encoder/levels.h"
-#include "dbss/encoder/loop_subdivision.h"
+#include "dbss/measure/loop_subdivision.h"
 #include "dbss/encoder/mesh_ops.h"
 #include "dbss/encoder/point_index.h"
 #include "dbss/encoder/sampling.h"

@@ -1,0 +1,47 @@
+// Points and meshes in the common interchange formats: PLY, OBJ, OFF, STL
+// and XYZ.  One file per format in io/src, each with its reader and writer,
+// behind one table keyed by extension (io/src/formats.cpp): adding a format
+// is one file and one row.
+#pragma once
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "dbss/decoder/mesh.h"
+#include "dbss/format/status.h"
+
+namespace dbss {
+
+// Points in model units: the encoder's first stage struct.
+struct PointCloud {
+  std::vector<float> xyz;      // 3 per point
+  std::vector<float> normals;  // 3 per point when the file has them, else empty
+  size_t size() const noexcept { return xyz.size() / 3; }
+};
+
+// Reads the vertices of PLY (ascii, binary little or big endian; float,
+// double or integer coordinates; other properties and elements skipped), OBJ
+// (`v` lines), OFF (with or without colours/normals, faces ignored), XYZ
+// (`x y z` or `x y z nx ny nz` per line) and STL (ascii or binary; the
+// triangle corners, duplicates merged).  The format is chosen by extension,
+// case-insensitive.  Errors (invalid_argument / io) name the file and the
+// line or byte: unreadable, empty, malformed, cut short, NaN, infinite or
+// over 1e15 in magnitude.
+Result<PointCloud> read_points(const std::string& path);
+
+// Same, from bytes already in memory; `name` is used in messages and its
+// extension picks the format.
+Result<PointCloud> parse_points(const std::string& name, std::string_view bytes);
+
+// A triangle mesh as .obj, .off, binary little-endian .ply or binary .stl,
+// chosen by the extension of `path`; written atomically.  invalid_argument
+// for another extension.
+Status write_mesh(const std::string& path, const TriangleMesh& mesh);
+
+// The extensions read_points() and write_mesh() accept, as ".ply, .obj, ..."
+// for messages and --help.
+std::string readable_extensions();
+std::string writable_extensions();
+
+}  // namespace dbss

@@ -1,0 +1,82 @@
+// The format table and the dispatch by extension.
+#include "formats.h"
+
+#include "dbss/io/file.h"
+#include "text.h"
+
+namespace dbss {
+
+namespace io_detail {
+
+namespace {
+// Binary little-endian PLY first: the smallest of the mesh formats.
+constexpr GeometryFormat kFormats[] = {
+    {{"ply"}, parse_ply, write_ply},
+    {{"obj"}, parse_obj, write_obj},
+    {{"off"}, parse_off, write_off},
+    {{"stl"}, parse_stl, write_stl},
+    {{"xyz", "pts", "txt"}, parse_xyz, nullptr},
+};
+
+std::string list(bool readable) {
+  std::string out;
+  for (const GeometryFormat& f : kFormats) {
+    if (!(readable ? f.read_points != nullptr : f.write_mesh != nullptr)) continue;
+    // The first extension names the format; the others are aliases.
+    out += (out.empty() ? "." : ", .") + std::string(f.extensions[0]);
+  }
+  return out;
+}
+}  // namespace
+
+std::span<const GeometryFormat> geometry_formats() { return kFormats; }
+
+const GeometryFormat* find_format(std::string_view extension) {
+  for (const GeometryFormat& f : kFormats)
+    for (std::string_view e : f.extensions)
+      if (!e.empty() && e == extension) return &f;
+  return nullptr;
+}
+
+}  // namespace io_detail
+
+using namespace io_detail;
+
+std::string readable_extensions() { return list(true); }
+std::string writable_extensions() { return list(false); }
+
+Result<PointCloud> parse_points(const std::string& name, std::string_view bytes) {
+  const std::string ext = lower_extension(name);
+  const GeometryFormat* f = find_format(ext);
+  if (f == nullptr || f->read_points == nullptr)
+    return bad(name, "unknown input format '." + ext + "' (expected " + readable_extensions() + ")");
+  Result<PointCloud> r = f->read_points(name, bytes);
+  if (r.ok() && r.value().size() == 0) return bad(name, "the file holds no points");
+  return r;
+}
+
+Result<PointCloud> read_points(const std::string& path) {
+  // The format first: a device or a file of another kind is refused before
+  // anything is read.
+  const std::string ext = lower_extension(path);
+  const GeometryFormat* f = find_format(ext);
+  if (f == nullptr || f->read_points == nullptr)
+    return bad(path, ext.empty() ? "no file extension to tell the format (expected " + readable_extensions() + ")"
+                                 : "unknown input format '." + ext + "' (expected " + readable_extensions() + ")");
+  // 4 GiB: over 100 million points in any of the formats, far beyond what
+  // reconstruction handles on one machine.
+  auto bytes = io::read_file(path, uint64_t{1} << 32);
+  if (!bytes.ok()) return bytes.status();
+  const std::vector<uint8_t>& b = bytes.value();
+  return parse_points(path, std::string_view(reinterpret_cast<const char*>(b.data()), b.size()));
+}
+
+Status write_mesh(const std::string& path, const TriangleMesh& mesh) {
+  const GeometryFormat* f = find_format(lower_extension(path));
+  if (f == nullptr || f->write_mesh == nullptr)
+    return Status(ErrorCode::invalid_argument, path + ": unknown mesh format (expected " + writable_extensions() + ")");
+  const std::string bytes = f->write_mesh(mesh);
+  return io::write_file_atomic(path, std::span<const uint8_t>(reinterpret_cast<const uint8_t*>(bytes.data()), bytes.size()));
+}
+
+}  // namespace dbss
