@@ -22,6 +22,10 @@ cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_COMPILER=g++
 cmake --build build -j "$jobs"
 ctest --test-dir build --output-on-failure -j "$jobs" | tee build/ctest.log
 
+# Format, decoder and io alone, where Eigen and nanoflann cannot be reached.
+echo "== decoder-only build =="
+bash scripts/decoder-only.sh build-decoder-only
+
 echo "== clang, ASan + UBSan =="
 cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ \
   -DDBSS_SANITIZE=address,undefined -DDBSS_BUILD_BENCH=OFF -DDBSS_WERROR=ON
@@ -59,5 +63,5 @@ for log in build/ctest.log build-asan/ctest.log; do
   n=$(sed -n 's/^100% tests passed, 0 tests failed out of \([0-9]*\)$/\1/p' "$log")
   passed=$((passed + ${n:-0}))
 done
-echo "test.sh: gcc and clang+sanitizer suites, golden files at -O0 and clang -O3, fuzzing: all clean"
+echo "test.sh: gcc and clang+sanitizer suites, the decoder-only build, golden files at -O0 and clang -O3, fuzzing: all clean"
 echo "${passed} passed, 0 failed"
