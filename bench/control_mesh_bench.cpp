@@ -12,7 +12,6 @@
 
 #include "../tests/sampled_shapes.h"
 #include "dbss/encoder/control_mesh.h"
-#include "dbss/encoder/mesh_ops.h"
 
 #ifdef DBSS_HAVE_OPENMESH
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>

@@ -28,7 +28,7 @@
 
 #include "../tests/defect_shapes.h"
 #include "dbss/encoder/encode.h"
-#include "dbss/encoder/mesh_ops.h"
+#include "dbss/encoder/point_distances.h"
 #include "dbss/encoder/point_input.h"
 #ifdef DBSS_SCAN_CHECK
 #include "dbss/encoder/outliers.h"

@@ -10,7 +10,7 @@
 #include "dbss/encoder/encode.h"
 #include "dbss/encoder/point_index.h"
 #include "dbss/encoder/cell_dump.h"
-#include "dbss/encoder/mesh_ops.h"
+#include "dbss/encoder/point_distances.h"
 #include "dbss/encoder/point_input.h"
 #include "dbss/format/writer.h"
 #include "dbss/io/file.h"

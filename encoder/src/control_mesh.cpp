@@ -7,7 +7,8 @@
 #include <optional>
 #include <string>
 
-#include "dbss/encoder/mesh_ops.h"
+#include "dbss/encoder/mesh_folds.h"
+#include "dbss/encoder/self_intersections.h"
 #include "dbss/encoder/open_surface.h"
 #include "dbss/encoder/triangle_tree.h"
 #include "dbss/encoder/point_index.h"

@@ -1,7 +1,7 @@
 #include <numeric>
 
 #include "dbss/decoder/topology.h"
-#include "dbss/encoder/shell_mesh.h"
+#include "dbss/encoder/mesh_info.h"
 
 namespace dbss {
 

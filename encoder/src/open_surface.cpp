@@ -6,7 +6,8 @@
 #include <queue>
 #include <unordered_map>
 
-#include "dbss/encoder/mesh_ops.h"
+#include "dbss/encoder/mesh_adjacency.h"
+#include "dbss/encoder/point_distances.h"
 
 namespace dbss {
 

@@ -8,7 +8,7 @@
 #include <numeric>
 #include <unordered_map>
 
-#include "dbss/encoder/mesh_ops.h"
+#include "dbss/encoder/point_distances.h"
 
 namespace dbss {
 

@@ -1,6 +1,8 @@
 #include "dbss/encoder/projection.h"
 
-#include "dbss/encoder/mesh_ops.h"
+#include "dbss/encoder/mesh_adjacency.h"
+#include "dbss/encoder/mesh_folds.h"
+#include "dbss/encoder/point_distances.h"
 
 namespace dbss {
 

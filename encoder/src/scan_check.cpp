@@ -5,7 +5,7 @@
 #include <cstdio>
 
 #include "dbss/encoder/encode.h"
-#include "dbss/encoder/mesh_ops.h"
+#include "dbss/encoder/point_distances.h"
 #include "dbss/encoder/open_surface.h"
 #include "dbss/encoder/outliers.h"
 #include "dbss/encoder/shell_mesh.h"

@@ -3,7 +3,9 @@
 #include <array>
 #include <cmath>
 
-#include "dbss/encoder/mesh_ops.h"
+#include "dbss/encoder/mesh_adjacency.h"
+#include "dbss/encoder/mesh_folds.h"
+#include "dbss/encoder/self_intersections.h"
 
 namespace dbss {
 

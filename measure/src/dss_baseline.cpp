@@ -6,7 +6,7 @@
 #include "dbss/decoder/topology.h"
 #include "dbss/encoder/levels.h"
 #include "dbss/measure/loop_subdivision.h"
-#include "dbss/encoder/mesh_ops.h"
+#include "dbss/encoder/mesh_adjacency.h"
 #include "dbss/encoder/point_index.h"
 #include "dbss/encoder/sampling.h"
 #include "dbss/format/container.h"

@@ -13,7 +13,7 @@
 #include "dbss/encoder/encode.h"
 #include "dbss/encoder/levels.h"
 #include "dbss/measure/surface_distance.h"
-#include "dbss/encoder/mesh_ops.h"
+#include "dbss/encoder/point_distances.h"
 #include "dbss/format/writer.h"
 
 using namespace dbss;

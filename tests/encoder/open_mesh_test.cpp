@@ -11,7 +11,9 @@
 #include <vector>
 
 #include "../shapes.h"
-#include "dbss/encoder/mesh_ops.h"
+#include "dbss/encoder/mesh_adjacency.h"
+#include "dbss/encoder/mesh_folds.h"
+#include "dbss/encoder/self_intersections.h"
 #include "dbss/encoder/point_index.h"
 #include "dbss/encoder/projection.h"
 #include "dbss/encoder/shell_mesh.h"

@@ -10,7 +10,7 @@
 #include "../defect_shapes.h"
 #include "../test_data.h"
 #include "dbss/encoder/encode.h"
-#include "dbss/encoder/mesh_ops.h"
+#include "dbss/encoder/point_distances.h"
 #include "dbss/encoder/shell_mesh.h"
 
 using namespace dbss;

@@ -20,7 +20,7 @@
 
 #include "../defect_shapes.h"
 #include "dbss/encoder/encode.h"
-#include "dbss/encoder/mesh_ops.h"
+#include "dbss/encoder/point_distances.h"
 #include "dbss/encoder/scan_check.h"
 #include "dbss/encoder/shell_mesh.h"
 

@@ -11,7 +11,7 @@
 
 #include "dbss/decoder/progressive.h"
 #include "dbss/encoder/encode.h"
-#include "dbss/encoder/mesh_ops.h"
+#include "dbss/encoder/point_distances.h"
 #include "dbss/encoder/shell_mesh.h"
 #include "dbss/measure/surface_distance.h"
 

@@ -3,6 +3,7 @@
 
 #include "dbss/decoder/mesh.h"
 #include "dbss/encoder/cell_carving.h"
+#include "dbss/encoder/mesh_info.h"
 #include "dbss/format/status.h"
 
 namespace dbss {
@@ -19,19 +20,5 @@ namespace dbss {
 // closed, oriented 2-manifold whose Euler characteristic is twice the
 // solid's; both are checked, and a failed check is an internal error.
 Result<TriangleMesh> triangulate_shell(const CellGrid& grid, bool collapse_types = true);
-
-// Topological facts about a mesh, from the decoder's own topology builder.
-struct MeshInfo {
-  bool manifold = false;  // oriented 2-manifold, every edge in 1 or 2 triangles
-  bool closed = false;    // no boundary edge
-  uint32_t components = 0;
-  uint32_t boundary_loops = 0;  // closed walks of boundary edges; 0 when closed
-  int64_t euler = 0;      // V - E + F
-  // Sum over components of (2 - euler - boundary loops) / 2: the handles,
-  // for open components too (a disc or a tube has genus 0).
-  int64_t genus = 0;
-  Status status;          // why it is not manifold
-};
-MeshInfo mesh_info(const TriangleMesh& mesh);
 
 }  // namespace dbss

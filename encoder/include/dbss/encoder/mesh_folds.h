@@ -1,0 +1,38 @@
+// Triangles that turn over: whether a vertex move flips its fan, which
+// edges are folded, and smoothing that takes folds away.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "dbss/decoder/mesh.h"
+#include "dbss/encoder/mesh_adjacency.h"
+
+namespace dbss {
+
+// Whether moving vertex v to `to` keeps every triangle around it facing
+// within 90 degrees of where it faced before (no triangle turns over).
+// Meshes with boundary are fine: the fan of a boundary vertex is open.
+bool move_keeps_orientation(const TriangleMesh& m, const Adjacency& vertex_tris, uint32_t v, const float to[3]);
+
+// Whether any edge of the triangles around v is folded (see count_foldovers;
+// a boundary edge has one triangle and is never folded).
+bool folded_around(const TriangleMesh& m, const Adjacency& vertex_tris, uint32_t v, double max_angle_degrees = 150);
+
+// Edges whose two triangles fold back onto each other: the angle between
+// their normals is over `max_angle_degrees` (a fold-over).  Oriented
+// manifold input, closed or with boundary; boundary edges (one triangle)
+// are never folded.
+size_t count_foldovers(const TriangleMesh& m, double max_angle_degrees = 150);
+
+// Vertices on the edges count_foldovers() would count.
+std::vector<uint32_t> foldover_vertices(const TriangleMesh& m, double max_angle_degrees = 150);
+
+// Smooths folds away: vertices on folded edges and their neighbours go to
+// the mean of their neighbours (boundary vertices: of their two boundary
+// neighbours, see rim_neighbours), up to `rounds` times.  Returns the number
+// of folded edges met.
+size_t untangle_folds(TriangleMesh& m, int rounds = 8);
+
+}  // namespace dbss

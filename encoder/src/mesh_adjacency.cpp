@@ -1,0 +1,78 @@
+#include "dbss/encoder/mesh_adjacency.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "mesh_geometry.h"
+
+namespace dbss {
+
+using namespace mesh_geometry;
+
+Adjacency vertex_adjacency(const TriangleMesh& m) {
+  const size_t n = m.vertex_count();
+  std::vector<std::pair<uint32_t, uint32_t>> pairs;
+  pairs.reserve(m.triangles.size() * 2);
+  for (size_t f = 0; f < m.triangle_count(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      const uint32_t a = m.triangles[3 * f + k], b = m.triangles[3 * f + (k + 1) % 3];
+      pairs.push_back({a, b});
+      pairs.push_back({b, a});
+    }
+  std::sort(pairs.begin(), pairs.end());
+  pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+  Adjacency adj;
+  adj.offset.assign(n + 1, 0);
+  for (auto& p : pairs) ++adj.offset[p.first + 1];
+  for (size_t v = 0; v < n; ++v) adj.offset[v + 1] += adj.offset[v];
+  adj.index.resize(pairs.size());
+  for (size_t i = 0; i < pairs.size(); ++i) adj.index[i] = pairs[i].second;
+  return adj;
+}
+
+Adjacency vertex_triangles(const TriangleMesh& m) {
+  Adjacency a;
+  a.offset.assign(m.vertex_count() + 1, 0);
+  for (uint32_t v : m.triangles) ++a.offset[v + 1];
+  for (size_t v = 0; v < m.vertex_count(); ++v) a.offset[v + 1] += a.offset[v];
+  a.index.resize(m.triangles.size());
+  std::vector<uint32_t> fill(a.offset.begin(), a.offset.end() - 1);
+  for (size_t c = 0; c < m.triangles.size(); ++c) a.index[fill[m.triangles[c]]++] = static_cast<uint32_t>(c / 3);
+  return a;
+}
+
+
+Rim rim_neighbours(const TriangleMesh& m) {
+  std::vector<std::pair<uint32_t, uint32_t>> half;
+  half.reserve(m.triangles.size());
+  for (size_t f = 0; f < m.triangle_count(); ++f)
+    for (int k = 0; k < 3; ++k) half.push_back({m.triangles[3 * f + k], m.triangles[3 * f + (k + 1) % 3]});
+  std::sort(half.begin(), half.end());
+  Rim rim(m.vertex_count(), {kNotOnRim, kNotOnRim});
+  std::vector<uint32_t> ins(m.vertex_count(), 0), outs(m.vertex_count(), 0);
+  for (const auto& [a, b] : half) {
+    if (std::binary_search(half.begin(), half.end(), std::pair{b, a})) continue;  // interior edge
+    rim[a][1] = b, rim[b][0] = a;
+    ++outs[a], ++ins[b];
+  }
+  for (size_t v = 0; v < rim.size(); ++v)
+    if ((ins[v] || outs[v]) && (ins[v] != 1 || outs[v] != 1)) rim[v] = {static_cast<uint32_t>(v), static_cast<uint32_t>(v)};
+  return rim;
+}
+
+std::vector<std::array<double, 3>> vertex_normals(const TriangleMesh& m) {
+  std::vector<V3> n(m.vertex_count(), V3{0, 0, 0});
+  for (size_t f = 0; f < m.triangle_count(); ++f) {
+    const V3 fn = face_normal(m, f);
+    for (int k = 0; k < 3; ++k)
+      for (int a = 0; a < 3; ++a) n[m.triangles[3 * f + k]][a] += fn[a];
+  }
+  for (auto& v : n) {
+    const double l = std::sqrt(dot(v, v));
+    if (l > 0)
+      for (double& x : v) x /= l;
+  }
+  return n;
+}
+
+}  // namespace dbss

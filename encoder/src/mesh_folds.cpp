@@ -1,0 +1,107 @@
+#include "dbss/encoder/mesh_folds.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <numbers>
+
+#include "mesh_geometry.h"
+
+namespace dbss {
+
+using namespace mesh_geometry;
+
+bool move_keeps_orientation(const TriangleMesh& m, const Adjacency& vt, uint32_t v, const float to[3]) {
+  // Each triangle around v must keep facing within 90 degrees of where it
+  // faced and of the fan's mean normal; the second test stops a triangle
+  // from turning over a little at a time across iterations.
+  V3 fan{0, 0, 0};
+  for (uint32_t i = vt.offset[v]; i < vt.offset[v + 1]; ++i) {
+    const V3 n = face_normal(m, vt.index[i]);
+    for (int a = 0; a < 3; ++a) fan[a] += n[a];
+  }
+  for (uint32_t i = vt.offset[v]; i < vt.offset[v + 1]; ++i) {
+    const uint32_t f = vt.index[i];
+    V3 before[3], after[3];
+    for (int k = 0; k < 3; ++k) {
+      const uint32_t w = m.triangles[3 * size_t{f} + k];
+      before[k] = pos(m, w);
+      after[k] = w == v ? V3{to[0], to[1], to[2]} : before[k];
+    }
+    const V3 n0 = cross(sub(before[1], before[0]), sub(before[2], before[0]));
+    const V3 n1 = cross(sub(after[1], after[0]), sub(after[2], after[0]));
+    // A triangle already at odds with its fan may move, as long as it does
+    // not turn further against the fan.
+    if (dot(n0, n1) <= 0 || (dot(fan, n1) <= 0 && dot(fan, n1) < dot(fan, n0))) return false;
+  }
+  return true;
+}
+
+bool folded_around(const TriangleMesh& m, const Adjacency& vt, uint32_t v, double max_angle_degrees) {
+  const double limit = std::cos(max_angle_degrees * std::numbers::pi / 180);
+  for (uint32_t i = vt.offset[v]; i < vt.offset[v + 1]; ++i) {
+    const uint32_t f = vt.index[i];
+    const V3 nf = face_normal(m, f);
+    for (int k = 0; k < 3; ++k) {
+      const uint32_t a = m.triangles[3 * size_t{f} + k], b = m.triangles[3 * size_t{f} + (k + 1) % 3];
+      for (uint32_t j = vt.offset[a]; j < vt.offset[a + 1]; ++j) {
+        const uint32_t g = vt.index[j];
+        if (g == f) continue;
+        bool has_b = false;
+        for (int c = 0; c < 3; ++c) has_b |= m.triangles[3 * size_t{g} + c] == b;
+        if (!has_b) continue;
+        const V3 ng = face_normal(m, g);
+        const double l = std::sqrt(dot(nf, nf) * dot(ng, ng));
+        if (l > 0 && dot(nf, ng) / l < limit) return true;
+      }
+    }
+  }
+  return false;
+}
+
+std::vector<uint32_t> foldover_vertices(const TriangleMesh& m, double max_angle_degrees) {
+  std::map<std::pair<uint32_t, uint32_t>, size_t> first;
+  const double limit = std::cos(max_angle_degrees * std::numbers::pi / 180);
+  std::vector<uint32_t> out;
+  for (size_t f = 0; f < m.triangle_count(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      const uint32_t a = m.triangles[3 * f + k], b = m.triangles[3 * f + (k + 1) % 3];
+      auto it = first.find({b, a});
+      if (it == first.end()) {
+        first[{a, b}] = f;
+        continue;
+      }
+      const V3 n1 = face_normal(m, f), n2 = face_normal(m, it->second);
+      const double l = std::sqrt(dot(n1, n1) * dot(n2, n2));
+      if (l > 0 && dot(n1, n2) / l < limit) out.insert(out.end(), {a, b});
+    }
+  return out;
+}
+
+size_t count_foldovers(const TriangleMesh& m, double max_angle_degrees) {
+  return foldover_vertices(m, max_angle_degrees).size() / 2;
+}
+
+size_t untangle_folds(TriangleMesh& m, int rounds) {
+  const Adjacency adj = vertex_adjacency(m);
+  const Rim rim = rim_neighbours(m);
+  size_t met = 0;
+  for (int round = 0; round < rounds; ++round) {
+    const std::vector<uint32_t> folded = foldover_vertices(m);
+    if (folded.empty()) break;
+    met += folded.size() / 2;
+    std::vector<uint32_t> ring;
+    for (uint32_t v : folded) {
+      ring.push_back(v);
+      for (uint32_t i = adj.offset[v]; i < adj.offset[v + 1]; ++i) ring.push_back(adj.index[i]);
+    }
+    for (uint32_t v : ring) {  // in place: later vertices see earlier moves
+      float to[3];
+      if (smoothing_target(m, adj, rim, v, to))
+        for (int a = 0; a < 3; ++a) m.positions[3 * size_t{v} + a] = to[a];
+    }
+  }
+  return met;
+}
+
+}  // namespace dbss
