@@ -10,13 +10,13 @@
 
 namespace dbss::io_detail {
 
-using PointReader = Result<PointCloud> (*)(const std::string& name, std::string_view bytes);
+using GeometryReader = Result<GeometryFile> (*)(const std::string& name, std::string_view bytes);
 // The whole file's bytes for a mesh.
 using MeshWriter = std::string (*)(const TriangleMesh& mesh);
 
 struct GeometryFormat {
   std::string_view extensions[3];  // lower case, without the dot; unused ones empty
-  PointReader read_points;         // null: cannot be read
+  GeometryReader read;             // null: cannot be read
   MeshWriter write_mesh;           // null: cannot be written
 };
 
@@ -24,11 +24,11 @@ std::span<const GeometryFormat> geometry_formats();
 // The row for a lower-case extension, or null.
 const GeometryFormat* find_format(std::string_view extension);
 
-Result<PointCloud> parse_ply(const std::string& name, std::string_view bytes);
-Result<PointCloud> parse_obj(const std::string& name, std::string_view text);
-Result<PointCloud> parse_off(const std::string& name, std::string_view text);
-Result<PointCloud> parse_stl(const std::string& name, std::string_view bytes);
-Result<PointCloud> parse_xyz(const std::string& name, std::string_view text);
+Result<GeometryFile> parse_ply(const std::string& name, std::string_view bytes);
+Result<GeometryFile> parse_obj(const std::string& name, std::string_view text);
+Result<GeometryFile> parse_off(const std::string& name, std::string_view text);
+Result<GeometryFile> parse_stl(const std::string& name, std::string_view bytes);
+Result<GeometryFile> parse_xyz(const std::string& name, std::string_view text);
 std::string write_ply(const TriangleMesh& mesh);
 std::string write_obj(const TriangleMesh& mesh);
 std::string write_off(const TriangleMesh& mesh);

@@ -1,4 +1,4 @@
-// OFF: vertices read (colours and faces ignored); triangles written.
+// OFF: vertices and faces (colours ignored), read and written.
 #include "formats.h"
 
 #include <cstdio>
@@ -7,8 +7,9 @@
 
 namespace dbss::io_detail {
 
-Result<PointCloud> parse_off(const std::string& name, std::string_view text) {
-  PointCloud c;
+Result<GeometryFile> parse_off(const std::string& name, std::string_view text) {
+  GeometryFile g;
+  PointCloud& c = g.points;
   Lines lines(text);
   std::string_view line;
   // Numbers after the keyword, skipping comments and blank lines.
@@ -56,7 +57,34 @@ Result<PointCloud> parse_off(const std::string& name, std::string_view text) {
     if (n < 3) return bad(name, at_line(lines.number()) + ": a vertex needs three numbers");
     if (!push_point(c.xyz, v)) return bad(name, at_line(lines.number()) + ": coordinate is NaN, infinite or over 1e15");
   }
-  return c;
+  // Faces: `n i_1 .. i_n` and optionally a colour after them.  A file cut
+  // short in its faces keeps the faces read (a point reader never needed
+  // them), but a malformed face is an error.
+  const double nf = header_numbers[1];
+  std::vector<uint32_t> corners;
+  for (size_t f = 0; f < static_cast<size_t>(nf) && lines.next(line);) {
+    const auto hash = line.find('#');
+    if (hash != std::string_view::npos) line = line.substr(0, hash);
+    Tokens t(line);
+    std::string_view tok;
+    double n;
+    if (!t.next(tok)) continue;
+    if (!parse_double(tok, n) || n != std::floor(n) || n < 3 || n > 1e6)
+      return bad(name, at_line(lines.number()) + ": face " + std::to_string(f) + " needs a corner count of at least 3");
+    corners.clear();
+    for (int k = 0; k < static_cast<int>(n); ++k) {
+      double i;
+      if (!t.next(tok) || !parse_double(tok, i) || i != std::floor(i))
+        return bad(name, at_line(lines.number()) + ": face " + std::to_string(f) + " has a bad or missing corner");
+      if (i < 0 || i >= static_cast<double>(c.size()))
+        return bad(name, at_line(lines.number()) + ": face " + std::to_string(f) + " corner " + std::to_string(static_cast<long long>(i)) +
+                             " is not a vertex (" + std::to_string(c.size()) + " vertices)");
+      corners.push_back(static_cast<uint32_t>(i));
+    }
+    add_polygon(g.triangles, corners);
+    ++f;
+  }
+  return g;
 }
 
 std::string write_off(const TriangleMesh& m) {

@@ -73,7 +73,7 @@ double load(const unsigned char* p, Type t, bool swap) {
 
 }  // namespace
 
-Result<PointCloud> parse_ply(const std::string& name, std::string_view bytes) {
+Result<GeometryFile> parse_ply(const std::string& name, std::string_view bytes) {
   // Header.
   size_t pos = 0, line_no = 0;
   auto next_line = [&](std::string_view& line) {
@@ -139,8 +139,11 @@ Result<PointCloud> parse_ply(const std::string& name, std::string_view bytes) {
   }
   if (!have_format) return bad(name, "PLY header has no format line");
 
-  PointCloud c;
+  GeometryFile g;
+  PointCloud& c = g.points;
   bool found = false;
+  std::vector<double> face_corners;   // every face's corners in order
+  std::vector<size_t> face_offsets{0};
   const bool swap = (fmt == big) != (std::endian::native == std::endian::big);
   for (const Element& e : elements) {
     int ix[6] = {-1, -1, -1, -1, -1, -1};
@@ -158,6 +161,16 @@ Result<PointCloud> parse_ply(const std::string& name, std::string_view bytes) {
       c.xyz.reserve(3 * e.count);
     }
     const bool want_normals = vertex && ix[3] >= 0 && ix[4] >= 0 && ix[5] >= 0;
+    // The faces: the first list named vertex_indices (or vertex_index) of
+    // the face element; other lists are skipped.
+    int face_list = -1;
+    if (e.name == "face")
+      for (size_t i = 0; i < e.props.size() && face_list < 0; ++i)
+        if (e.props[i].count_type != Type::none && (e.props[i].name == "vertex_indices" || e.props[i].name == "vertex_index"))
+          face_list = static_cast<int>(i);
+    // Corners are checked once every element is read: the face element
+    // may come before the vertex element.
+    auto add_corner = [&](double v, uint64_t) { face_corners.push_back(v); };
     std::vector<double> row(e.props.size());
     for (uint64_t r = 0; r < e.count; ++r) {
       if (fmt == ascii) {
@@ -192,8 +205,9 @@ Result<PointCloud> parse_ply(const std::string& name, std::string_view bytes) {
           if (e.props[p].count_type != Type::none) {
             if (v < 0 || v > 1e6 || v != std::floor(v)) return bad(name, "line " + std::to_string(line_no) + ": bad list length");
             for (uint64_t k = 0; k < static_cast<uint64_t>(v); ++k) {
-              double dummy;
-              if (!token(dummy)) return bad(name, "line " + std::to_string(line_no) + ": list '" + e.props[p].name + "' cut short");
+              double item;
+              if (!token(item)) return bad(name, "line " + std::to_string(line_no) + ": list '" + e.props[p].name + "' cut short");
+              if (static_cast<int>(p) == face_list) add_corner(item, r);
             }
           }
           row[p] = v;
@@ -209,6 +223,10 @@ Result<PointCloud> parse_ply(const std::string& name, std::string_view bytes) {
             pos += size_of(pr.count_type);
             if (n < 0 || n * size_of(pr.type) > static_cast<double>(bytes.size() - pos))
               return bad(name, "byte " + std::to_string(start) + ": list '" + pr.name + "' runs past the end of the file");
+            if (static_cast<int>(p) == face_list) {
+              for (size_t k = 0; k < static_cast<size_t>(n); ++k)
+                add_corner(load(reinterpret_cast<const unsigned char*>(bytes.data() + pos + k * size_of(pr.type)), pr.type, swap), r);
+            }
             pos += static_cast<size_t>(n) * size_of(pr.type);
             row[p] = n;
           } else {
@@ -219,6 +237,10 @@ Result<PointCloud> parse_ply(const std::string& name, std::string_view bytes) {
             pos += size_of(pr.type);
           }
         }
+      }
+      if (face_list >= 0) {
+        if (face_corners.size() - face_offsets.back() < 3) return bad(name, "face " + std::to_string(r) + " has fewer than 3 corners");
+        face_offsets.push_back(face_corners.size());
       }
       if (vertex) {
         const double v[3] = {row[ix[0]], row[ix[1]], row[ix[2]]};
@@ -233,7 +255,19 @@ Result<PointCloud> parse_ply(const std::string& name, std::string_view bytes) {
     }
   }
   if (!found) return bad(name, "PLY file has no vertex element");
-  return c;
+  std::vector<uint32_t> corners;
+  for (size_t f = 0; f + 1 < face_offsets.size(); ++f) {
+    corners.clear();
+    for (size_t k = face_offsets[f]; k < face_offsets[f + 1]; ++k) {
+      const double v = face_corners[k];
+      if (!(v >= 0 && v < static_cast<double>(c.size()) && v == std::floor(v)))
+        return bad(name, "face " + std::to_string(f) + " has corner " + std::to_string(static_cast<long long>(v)) +
+                             ", not a vertex (" + std::to_string(c.size()) + " vertices)");
+      corners.push_back(static_cast<uint32_t>(v));
+    }
+    add_polygon(g.triangles, corners);
+  }
+  return g;
 }
 
 // Binary little-endian: the smallest and fastest to read back.

@@ -10,15 +10,26 @@
 
 namespace dbss::io_detail {
 
-static void merge_duplicates(std::vector<float>& xyz) {
-  std::vector<std::array<float, 3>> p(xyz.size() / 3);
-  std::memcpy(p.data(), xyz.data(), xyz.size() * sizeof(float));
-  std::sort(p.begin(), p.end());
-  p.erase(std::unique(p.begin(), p.end()), p.end());
-  xyz.assign(&p.data()->front(), &p.data()->front() + 3 * p.size());
+// STL stores each triangle's corners: equal corners become one vertex
+// (vertices in lexicographic order of their coordinates) and every corner
+// three in a row a triangle of them.
+static GeometryFile merge_corners(const std::vector<float>& corners) {
+  using P = std::array<float, 3>;
+  if (corners.empty()) return {};
+  std::vector<P> p(corners.size() / 3);
+  std::memcpy(p.data(), corners.data(), corners.size() * sizeof(float));
+  std::vector<P> unique = p;
+  std::sort(unique.begin(), unique.end());
+  unique.erase(std::unique(unique.begin(), unique.end()), unique.end());
+  GeometryFile g;
+  g.points.xyz.assign(&unique.data()->front(), &unique.data()->front() + 3 * unique.size());
+  g.triangles.reserve(p.size());
+  for (const P& x : p)
+    g.triangles.push_back(static_cast<uint32_t>(std::lower_bound(unique.begin(), unique.end(), x) - unique.begin()));
+  return g;
 }
 
-Result<PointCloud> parse_stl(const std::string& name, std::string_view bytes) {
+Result<GeometryFile> parse_stl(const std::string& name, std::string_view bytes) {
   PointCloud c;
   // Binary STL: an 80-byte header, a triangle count, 50 bytes per triangle.
   // Some binary files also start with "solid", so the size decides.
@@ -37,8 +48,7 @@ Result<PointCloud> parse_stl(const std::string& name, std::string_view bytes) {
             return bad(name, "byte " + std::to_string(84 + 50 * size_t{f} + 12 + 12 * k) + ": coordinate is NaN or infinite");
         }
       }
-      merge_duplicates(c.xyz);
-      return c;
+      return merge_corners(c.xyz);
     }
   }
   if (bytes.substr(0, 5) != "solid")
@@ -54,8 +64,9 @@ Result<PointCloud> parse_stl(const std::string& name, std::string_view bytes) {
       if (!t.next(tok) || !parse_double(tok, v[k])) return bad(name, at_line(lines.number()) + ": a vertex needs three numbers");
     if (!push_point(c.xyz, v)) return bad(name, at_line(lines.number()) + ": coordinate is NaN, infinite or over 1e15");
   }
-  merge_duplicates(c.xyz);
-  return c;
+  if (c.size() % 3 != 0)
+    return bad(name, "ASCII STL has " + std::to_string(c.size()) + " vertex lines, not three per facet");
+  return merge_corners(c.xyz);
 }
 
 // Binary: 80-byte header, triangle count, then per triangle a zero normal

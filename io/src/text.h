@@ -5,6 +5,7 @@
 #include <cctype>
 #include <charconv>
 #include <cmath>
+#include <cstdint>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -83,5 +84,15 @@ inline bool push_point(std::vector<float>& out, const double* v) {
 }
 
 inline std::string at_line(size_t n) { return "line " + std::to_string(n); }
+
+// Appends polygon `corners` (0-based, already checked against the vertex
+// count) as a fan of triangles from its first corner.
+inline void add_polygon(std::vector<uint32_t>& triangles, const std::vector<uint32_t>& corners) {
+  for (size_t k = 2; k < corners.size(); ++k) {
+    triangles.push_back(corners[0]);
+    triangles.push_back(corners[k - 1]);
+    triangles.push_back(corners[k]);
+  }
+}
 
 }  // namespace dbss::io_detail

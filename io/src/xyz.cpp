@@ -4,8 +4,9 @@
 
 namespace dbss::io_detail {
 
-Result<PointCloud> parse_xyz(const std::string& name, std::string_view text) {
-  PointCloud c;
+Result<GeometryFile> parse_xyz(const std::string& name, std::string_view text) {
+  GeometryFile g;
+  PointCloud& c = g.points;
   Lines lines(text);
   std::string_view line;
   bool normals = true;
@@ -34,7 +35,7 @@ Result<PointCloud> parse_xyz(const std::string& name, std::string_view text) {
     }
   }
   if (!normals || c.normals.size() != c.xyz.size()) c.normals.clear();
-  return c;
+  return g;
 }
 
 }  // namespace dbss::io_detail

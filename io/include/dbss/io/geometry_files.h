@@ -4,6 +4,7 @@
 // is one file and one row.
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -19,6 +20,27 @@ struct PointCloud {
   std::vector<float> normals;  // 3 per point when the file has them, else empty
   size_t size() const noexcept { return xyz.size() / 3; }
 };
+
+// What a file holds: its vertices (with per-vertex normals when it has
+// them) and, for a file with faces, its triangles (polygons split into fans
+// from their first corner).  Empty `triangles`: a point set.
+struct GeometryFile {
+  PointCloud points;
+  std::vector<uint32_t> triangles;
+};
+
+// Vertices and faces of PLY (`face` element, list `vertex_indices` or
+// `vertex_index`), OBJ (`f` lines, negative indices relative, `v/vt/vn`
+// forms), OFF and STL (corners merged where their coordinates are equal);
+// XYZ has no faces.  Errors name the file and the line, byte or face: an
+// index out of range, a face with fewer than 3 corners, and everything
+// read_points() refuses.
+Result<GeometryFile> read_geometry(const std::string& path);
+Result<GeometryFile> parse_geometry(const std::string& name, std::string_view bytes);
+
+// A file's triangle mesh; invalid_argument naming the file when it has no
+// faces.
+Result<TriangleMesh> read_mesh(const std::string& path);
 
 // Reads the vertices of PLY (ascii, binary little or big endian; float,
 // double or integer coordinates; other properties and elements skipped), OBJ
