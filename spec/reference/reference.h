@@ -39,8 +39,11 @@ Decoded decode(std::span<const uint8_t> file);
 // q * step along the odd vertex's normal; an empty `q` means no displacement
 // at all (the undisplaced stencil points are returned as they are).
 // Throws std::invalid_argument for a mesh the spec does not define a
-// refinement for.
-Mesh subdivide(const Mesh& level, std::span<const int32_t> q, float step);
+// refinement for. With `normals`, also returns every odd vertex's binary64
+// unit normal of section 6 (3 per odd vertex, in edge order), with or
+// without displacement.
+Mesh subdivide(const Mesh& level, std::span<const int32_t> q, float step,
+               std::vector<double>* normals = nullptr);
 
 // decoding.md section 8: FNV-1a 64 over the little-endian binary32 bytes of
 // the positions, vertex by vertex, x y z.

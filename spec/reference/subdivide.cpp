@@ -143,7 +143,7 @@ void ring_normal(const std::vector<float>& P, uint32_t m, const uint32_t* ring, 
 
 }  // namespace
 
-Mesh subdivide(const Mesh& level, std::span<const int32_t> q, float step) {
+Mesh subdivide(const Mesh& level, std::span<const int32_t> q, float step, std::vector<double>* normals) {
   if (level.positions.size() % 3 != 0 || level.positions.size() / 3 >= kNone)
     throw std::invalid_argument("positions are not x y z triples");
   const uint32_t V = static_cast<uint32_t>(level.positions.size() / 3);
@@ -165,7 +165,8 @@ Mesh subdivide(const Mesh& level, std::span<const int32_t> q, float step) {
 
   // Sections 6 and 7: normals from the undisplaced level l+1 positions, so
   // displaced positions go to a copy until all normals are taken.
-  if (!q.empty()) {
+  if (normals) normals->assign(3 * size_t{E}, 0.0);
+  if (!q.empty() || normals) {
     std::vector<float> displaced(out.positions.begin() + 3 * size_t{V}, out.positions.end());
     const double step64 = double(step);
     for (uint32_t e = 0; e < E; ++e) {
@@ -181,13 +182,15 @@ Mesh subdivide(const Mesh& level, std::span<const int32_t> q, float step) {
         const uint32_t ring[4] = {w, m_wc, m_cu, u};
         ring_normal(out.positions, V + e, ring, 4, false, n);
       }
+      if (normals) std::copy(n, n + 3, normals->begin() + 3 * size_t{e});
+      if (q.empty()) continue;
       const double dq = double(q[e]) * step64;
       for (int c = 0; c < 3; ++c) {
         const double s = double(out.positions[3 * (size_t{V} + e) + c]);
         displaced[3 * size_t{e} + c] = static_cast<float>(s + dq * n[c]);
       }
     }
-    std::copy(displaced.begin(), displaced.end(), out.positions.begin() + 3 * size_t{V});
+    if (!q.empty()) std::copy(displaced.begin(), displaced.end(), out.positions.begin() + 3 * size_t{V});
   }
 
   // Section 4: triangle f becomes 4f+0..4f+3.
