@@ -27,7 +27,7 @@
 #include "../tests/shapes.h"
 #include "dbss/decoder/progressive.h"
 #include "timing.h"
-#include "dbss/decoder/subdivision.h"
+#include "dbss/decoder/topology.h"
 #include "dbss/encoder/control_mesh_codec.h"
 #include "../tests/decoder/file_builder.h"
 

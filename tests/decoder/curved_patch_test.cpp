@@ -10,11 +10,19 @@
 
 #include "../shapes.h"
 #include "dbss/decoder/level_refiner.h"
-#include "dbss/decoder/subdivision.h"
+#include "dbss/decoder/normals.h"
+#include "dbss/decoder/topology.h"
+#include "reference.h"
 
 using namespace dbss;
 
 namespace {
+
+// One level by the spec's reference decoder (spec/reference): q empty for
+// plain subdivision.
+std::vector<float> ref_step(const TriangleMesh& m, std::span<const int32_t> q = {}, float step = 0) {
+  return dbss_ref::subdivide(dbss_ref::Mesh{m.positions, m.triangles}, q, step).positions;
+}
 
 // The 5x5 vertex lattice x, y in -2..2, quad (x, y) split along its
 // (x,y)-(x+1,y+1) diagonal (interior valence 6), lifted onto the paraboloid
@@ -82,9 +90,7 @@ std::array<double, 3> hand_normal() {
 TEST_CASE("curved patch: stencil points, the ring normal and a displacement match the hand-computed values") {
   const TriangleMesh m = paraboloid_patch();
   const LevelTopology t = topology_of(m);
-  const LevelPlan plan = plan_level(t);
-  std::vector<float> flat;
-  subdivide_geometry(plan, m.positions, {}, 0, flat);
+  const std::vector<float> flat = ref_step(m);
   const uint32_t e = odd_at(flat, t.vertex_count, 0.5f, 0.0f);
   CHECK(flat[3 * (t.vertex_count + e) + 2] == kM[2]);
   for (const auto& r : {kRing[0], kRing[1], kRing[2], kRing[3]}) {
@@ -92,10 +98,11 @@ TEST_CASE("curved patch: stencil points, the ring normal and a displacement matc
     CHECK(flat[3 * (t.vertex_count + o) + 2] == r[2]);
   }
 
-  // Section 6 through the reference path's ring table.
+  // Section 6 through the decoder's ring table and normal kernel.
   const std::array<double, 3> n = hand_normal();
   double got[3];
-  odd_normals(plan.rings.data(), flat.data(), t.vertex_count, e, e + 1, got);
+  const std::vector<uint32_t> rings = build_odd_rings(t);
+  odd_normals(rings.data(), flat.data(), t.vertex_count, e, e + 1, got);
   CHECK(got[0] == n[0]);
   CHECK(got[1] == n[1]);
   CHECK(got[2] == n[2]);
@@ -106,10 +113,9 @@ TEST_CASE("curved patch: stencil points, the ring normal and a displacement matc
   // Section 7: q = 5, step 1/64 moves m by 5/64 along n, every other odd
   // vertex stays.
   const float step = 1.0f / 64;
-  std::vector<int32_t> q(plan.odd_count(), 0);
+  std::vector<int32_t> q(t.edge_count(), 0);
   q[e] = 5;
-  std::vector<float> moved;
-  subdivide_geometry(plan, m.positions, q, step, moved);
+  const std::vector<float> moved = ref_step(m, q, step);
   const double dq = 5.0 / 64;
   const float want[3] = {static_cast<float>(0.5 + dq * n[0]), static_cast<float>(0.0 + dq * n[1]),
                          static_cast<float>(1.0 / 32 + dq * n[2])};
@@ -143,8 +149,7 @@ TEST_CASE("curved patch: stencil points, the ring normal and a displacement matc
 TEST_CASE("curved patch: the boundary four-point rule and the reflected wings give the hand-computed points") {
   const TriangleMesh m = paraboloid_patch();
   const LevelTopology t = topology_of(m);
-  std::vector<float> flat;
-  subdivide_geometry(plan_level(t), m.positions, {}, 0, flat);
+  const std::vector<float> flat = ref_step(m);
   // Boundary edge (0,-2)-(1,-2), section 5.1: b = (-1,-2), a = (2,-2); on
   // the row y = -2, Z = 4x^2 + 8: b 12, u 8, w 12, a 24, so
   //   Z = (-12 + 9 * 8 + 9 * 12 - 24) / 16 = 9,
@@ -217,9 +222,7 @@ TEST_CASE("bordered meshes are crack-free: each cap's border is the four-point s
     LevelTopology t = topology_of(m);
     std::vector<float> pos = m.positions;
     for (int level = 0; level < 3; ++level) {
-      std::vector<float> next;
-      subdivide_geometry(plan_level(t), pos, {}, 0, next);
-      pos = std::move(next);
+      pos = ref_step(TriangleMesh{pos, t.triangles});
       t = refine_topology(t);
     }
     std::set<std::array<float, 3>> border;

@@ -8,9 +8,11 @@
 #include <set>
 
 #include "../shapes.h"
+#include "dbss/decoder/butterfly.h"
 #include "dbss/decoder/level_refiner.h"
-#include "dbss/decoder/subdivision.h"
+#include "dbss/decoder/topology.h"
 #include "dbss/format/container.h"
+#include "reference.h"
 
 using namespace dbss;
 
@@ -22,33 +24,40 @@ LevelTopology topology_of(const TriangleMesh& m) {
   return std::move(t).value();
 }
 
-// Subdivides `levels` times with pseudo-random displacements (or none).
+// Subdivides `levels` times with pseudo-random displacements (or none),
+// evaluated by the spec's reference decoder (spec/reference); the topology
+// of every level is the decoder's refine_topology().
 struct Chain {
   std::vector<std::vector<float>> positions;
   std::vector<LevelTopology> topology;
 };
 
-Chain subdivide(const TriangleMesh& m, int levels, int32_t amplitude = 0, unsigned threads = 1) {
+Chain subdivide(const TriangleMesh& m, int levels, int32_t amplitude = 0) {
   Chain c;
   c.topology.push_back(topology_of(m));
   c.positions.push_back(m.positions);
+  dbss_ref::Mesh mesh{m.positions, m.triangles};
   uint32_t s = 12345;
   for (int l = 0; l < levels; ++l) {
-    const LevelPlan plan = plan_level(c.topology.back());
     std::vector<int32_t> q;
     if (amplitude) {
-      q.resize(plan.odd_count());
+      q.resize(c.topology.back().edge_count());
       for (auto& v : q) {
         s = s * 1664525u + 1013904223u;
         v = static_cast<int32_t>((s >> 8) % (2 * uint32_t(amplitude) + 1)) - amplitude;
       }
     }
-    std::vector<float> next;
-    subdivide_geometry(plan, c.positions.back(), q, 1e-3f, next, threads);
-    c.positions.push_back(std::move(next));
+    mesh = dbss_ref::subdivide(mesh, q, 1e-3f);
+    c.positions.push_back(mesh.positions);
     c.topology.push_back(refine_topology(c.topology.back()));
+    REQUIRE(mesh.triangles == c.topology.back().triangles);
   }
   return c;
+}
+
+// The reference's plain subdivision of one level.
+std::vector<float> plain_step(const TriangleMesh& m) {
+  return dbss_ref::subdivide(dbss_ref::Mesh{m.positions, m.triangles}, {}, 0.0f).positions;
 }
 
 }  // namespace
@@ -172,8 +181,7 @@ TEST_CASE("the regular 8-point stencil on a hand-built patch gives the hand-comp
   auto z = [&](uint32_t i, uint32_t j) { return double(height(i, j)); };
   const double expect = 0.5 * (z(2, 2) + z(3, 2)) + 0.125 * (z(2, 1) + z(3, 3)) -
                         0.0625 * (z(3, 1) + z(1, 1) + z(2, 3) + z(4, 3));
-  std::vector<float> out;
-  subdivide_geometry(plan_level(t), m.positions, {}, 0, out);
+  const std::vector<float> out = plain_step(m);
   const float* p = &out[3 * (size_t{t.vertex_count} + edge)];
   CHECK(p[0] == 2.5f);
   CHECK(p[1] == 2.0f);
@@ -232,13 +240,30 @@ TEST_CASE("non-manifold and inconsistent input is rejected with bad_mesh") {
 }
 
 TEST_CASE("the thread count does not change a single bit") {
+  // The fast path (LevelRefiner runs the decoder's kernels) on 1 to 3
+  // threads, four levels deep, against the single-threaded reference.
   const TriangleMesh m = test::jitter(test::uv_sphere(20, 40), 0.01f);
-  const Chain one = subdivide(m, 4, 30, 1);
-  const Chain two = subdivide(m, 4, 30, 2);
-  const Chain three = subdivide(m, 4, 30, 3);
-  REQUIRE(one.positions.back().size() > 6 * 32768);
-  CHECK(one.positions.back() == two.positions.back());
-  CHECK(one.positions.back() == three.positions.back());
+  const Chain ref = subdivide(m, 4, 30);
+  for (unsigned threads : {1u, 2u, 3u}) {
+    auto r = LevelRefiner::create(m);
+    REQUIRE(r.ok());
+    uint32_t s = 12345;  // the same q sequence as subdivide()
+    std::vector<int32_t> q;
+    for (int l = 0; l < 4; ++l) {
+      // Odd vertices are chosen concurrently, so take their q from a table.
+      std::vector<int32_t> table(r.value().next_odd_count());
+      for (auto& v : table) {
+        s = s * 1664525u + 1013904223u;
+        v = static_cast<int32_t>((s >> 8) % 61u) - 30;
+      }
+      r.value().refine([&](uint32_t e, const double*, const double*, const float*, const float*) { return table[e]; },
+                       1e-3f, q, threads);
+    }
+    INFO(threads << " threads");
+    REQUIRE(ref.positions.back().size() > 6 * 32768);
+    REQUIRE(r.value().positions().size() == ref.positions.back().size());
+    CHECK(std::memcmp(r.value().positions().data(), ref.positions.back().data(), 4 * ref.positions.back().size()) == 0);
+  }
 }
 
 TEST_CASE("displacement moves odd vertices along the unit normal by q * step") {
@@ -246,12 +271,10 @@ TEST_CASE("displacement moves odd vertices along the unit normal by q * step") {
   // only in z, by exactly q * step.
   const TriangleMesh m = test::planar_grid(5, 5);
   const LevelTopology t = topology_of(m);
-  const LevelPlan plan = plan_level(t);
-  std::vector<int32_t> q(plan.odd_count());
+  std::vector<int32_t> q(t.edge_count());
   for (size_t i = 0; i < q.size(); ++i) q[i] = static_cast<int32_t>(i % 7) - 3;
-  std::vector<float> flat, moved;
-  subdivide_geometry(plan, m.positions, {}, 0, flat);
-  subdivide_geometry(plan, m.positions, q, 0.5f, moved);
+  const std::vector<float> flat = plain_step(m);
+  const std::vector<float> moved = dbss_ref::subdivide(dbss_ref::Mesh{m.positions, m.triangles}, q, 0.5f).positions;
   for (size_t i = 0; i < q.size(); ++i) {
     const float* a = &flat[3 * (t.vertex_count + i)];
     const float* b = &moved[3 * (t.vertex_count + i)];
@@ -267,38 +290,42 @@ TEST_CASE("the regular fast path gives the same bits as the generic weighted lis
                                 test::jitter(test::planar_grid(6, 5), 0.1f)}) {
     LevelTopology t = topology_of(m);
     t = refine_topology(t);  // mostly regular edges
-    std::vector<float> pos;
-    subdivide_geometry(plan_level(topology_of(m)), m.positions, {}, 0, pos);
-    LevelPlan fast = plan_level(t), slow = plan_level(t);
-    slow.stencils = build_stencils(t, /*all_generic=*/true);
-    REQUIRE(!fast.stencils.regular_odd.empty());
-    REQUIRE(slow.stencils.regular_odd.empty());
-    std::vector<float> a, b;
-    subdivide_geometry(fast, pos, {}, 0, a);
-    subdivide_geometry(slow, pos, {}, 0, b);
+    const std::vector<float> pos = plain_step(m);
+    const Stencils fast = build_stencils(t), slow = build_stencils(t, /*all_generic=*/true);
+    REQUIRE(!fast.regular_odd.empty());
+    REQUIRE(slow.regular_odd.empty());
+    auto evaluate = [&](const Stencils& st) {
+      std::vector<float> odd(3 * size_t{st.size()});
+      apply_stencils(st, pos.data(), 0, static_cast<uint32_t>(st.regular_odd.size()), 0,
+                     static_cast<uint32_t>(st.other_odd.size()), odd.data());
+      return odd;
+    };
+    const std::vector<float> a = evaluate(fast), b = evaluate(slow);
     CHECK(a == b);
+    // And both are the reference's odd vertices of the next level.
+    const std::vector<float> ref = plain_step(TriangleMesh{pos, t.triangles});
+    CHECK(std::equal(a.begin(), a.end(), ref.begin() + 3 * size_t{t.vertex_count}, ref.end()));
   }
 }
 
 TEST_CASE("all-zero displacements give exactly plain butterfly subdivision") {
+  // The fast path (LevelRefiner) choosing q = 0 everywhere against the
+  // reference's plain subdivision, three levels deep.
   for (const dbss::TriangleMesh& m : {dbss::test::jitter(dbss::test::torus(9, 7), 0.05f),
                                       dbss::test::jitter(dbss::test::bipyramid(11), 0.1f),
                                       dbss::test::jitter(dbss::test::planar_grid(6, 5), 0.1f)}) {
-    auto t = dbss::build_topology(static_cast<uint32_t>(m.vertex_count()), m.triangles);
-    REQUIRE(t.ok());
-    std::vector<float> plain = m.positions, zero = m.positions;
-    dbss::LevelTopology topo = t.value();
+    auto r = dbss::LevelRefiner::create(m);
+    REQUIRE(r.ok());
+    dbss_ref::Mesh plain{m.positions, m.triangles};
+    std::vector<int32_t> q;
     for (int level = 1; level <= 3; ++level) {
-      const dbss::LevelPlan plan = dbss::plan_level(topo);
-      std::vector<float> a, b;
-      dbss::subdivide_geometry(plan, plain, {}, 0.0f, a);
-      const std::vector<int32_t> q(plan.odd_count(), 0);
-      dbss::subdivide_geometry(plan, zero, q, 0.37f, b);
-      REQUIRE(a.size() == b.size());
+      plain = dbss_ref::subdivide(plain, {}, 0.0f);
+      r.value().refine([](uint32_t, const double*, const double*, const float*, const float*) { return 0; }, 0.37f,
+                       q, 1);
+      const auto zero = r.value().positions();
+      REQUIRE(plain.positions.size() == zero.size());
       // Equal values (a zero displacement may turn -0 into +0, nothing else).
-      for (size_t i = 0; i < a.size(); ++i) REQUIRE(a[i] == b[i]);
-      plain = std::move(a), zero = std::move(b);
-      topo = dbss::refine_topology(topo);
+      for (size_t i = 0; i < zero.size(); ++i) REQUIRE(plain.positions[i] == zero[i]);
     }
   }
 }
@@ -312,18 +339,17 @@ TEST_CASE("LevelRefiner (the encoder's closed loop) places vertices as the refer
       auto r = dbss::LevelRefiner::create(m);
       REQUIRE(r.ok());
       dbss::LevelTopology topo = t.value();
-      std::vector<float> ref = m.positions;
+      dbss_ref::Mesh ref{m.positions, m.triangles};
       for (int level = 1; level <= 3; ++level) {
-        const dbss::LevelPlan plan = dbss::plan_level(topo);
         // The chooser sees the reference's undisplaced point and its edge's
         // ends, and picks a q that depends on them.
-        std::vector<float> plain;
-        dbss::subdivide_geometry(plan, ref, {}, 0.0f, plain);
+        const dbss_ref::Mesh plain = dbss_ref::subdivide(ref, {}, 0.0f);
+        const size_t evens = ref.positions.size() / 3;
         std::vector<int32_t> q;
         std::atomic<bool> points_agree{true}, ends_agree{true};  // written from the step's threads
         const dbss::OddChooser choose = [&](uint32_t e, const double p[3], const double n[3], const float* a,
                                             const float* b) {
-          const float* want = &plain[3 * (size_t{plan.vertex_count} + e)];
+          const float* want = &plain.positions[3 * (evens + e)];
           if (!(p[0] == want[0] && p[1] == want[1] && p[2] == want[2])) points_agree = false;
           const uint32_t h = topo.edge_half[e];
           if (a != r.value().positions().data() + 3 * size_t{topo.triangles[h]} ||
@@ -335,13 +361,13 @@ TEST_CASE("LevelRefiner (the encoder's closed loop) places vertices as the refer
         r.value().refine(choose, 0.01f, q, threads);
         CHECK(points_agree.load());
         CHECK(ends_agree.load());
-        std::vector<float> next;
-        dbss::subdivide_geometry(plan, ref, q, 0.01f, next);
-        REQUIRE(r.value().positions().size() == next.size());
-        CHECK(std::memcmp(r.value().positions().data(), next.data(), next.size() * 4) == 0);
+        const dbss_ref::Mesh next = dbss_ref::subdivide(ref, q, 0.01f);
+        REQUIRE(r.value().positions().size() == next.positions.size());
+        CHECK(std::memcmp(r.value().positions().data(), next.positions.data(), next.positions.size() * 4) == 0);
         topo = dbss::refine_topology(topo);
         CHECK(std::equal(topo.triangles.begin(), topo.triangles.end(), r.value().triangles().begin()));
-        ref = std::move(next);
+        CHECK(next.triangles == topo.triangles);
+        ref = next;
       }
     }
   }

@@ -1,6 +1,6 @@
 // The sampler and the quantizer on surfaces whose distances are known: a
 // plane and a sphere.  Each level's odd vertices are recomputed here with
-// the decoder's reference path (stencil table, ring normals), sampled again,
+// the spec's reference decoder (spec/reference), sampled again,
 // and every stored integer must be the nearest one to distance / step, so
 // the vertex ends up within step / 2 of the sample along its normal.
 #include <catch2/catch.hpp>
@@ -10,11 +10,11 @@
 #include <numbers>
 
 #include "../shapes.h"
-#include "dbss/decoder/subdivision.h"
 #include "dbss/decoder/topology.h"
 #include "dbss/encoder/levels.h"
 #include "dbss/encoder/sampling.h"
 #include "dbss/format/container.h"
+#include "reference.h"
 
 using namespace dbss;
 
@@ -32,13 +32,10 @@ std::vector<OddVertex> odd_vertices(const std::vector<float>& positions, const s
   auto topo = build_topology(static_cast<uint32_t>(positions.size() / 3), triangles);
   REQUIRE(topo.ok());
   const LevelTopology& t = topo.value();
-  const LevelPlan plan = plan_level(t);
-  std::vector<float> s;
-  subdivide_geometry(plan, positions, {}, 0, s);
-  std::vector<double> n(3 * size_t{plan.odd_count()});
-  odd_normals(plan.rings.data(), s.data(), t.vertex_count, 0, plan.odd_count(), n.data());
-  std::vector<OddVertex> out(plan.odd_count());
-  for (uint32_t e = 0; e < plan.odd_count(); ++e) {
+  std::vector<double> n;
+  const std::vector<float> s = dbss_ref::subdivide(dbss_ref::Mesh{positions, triangles}, {}, 0.0f, &n).positions;
+  std::vector<OddVertex> out(t.edge_count());
+  for (uint32_t e = 0; e < t.edge_count(); ++e) {
     OddVertex& o = out[e];
     for (int a = 0; a < 3; ++a) o.point[a] = s[3 * (size_t{t.vertex_count} + e) + a], o.normal[a] = n[3 * size_t{e} + a];
     const uint32_t h = t.edge_half[e];
