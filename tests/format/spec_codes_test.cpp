@@ -138,7 +138,7 @@ TEST_CASE("spec 12: INDX rules come before the reader's limits") {
   CHECK(read_all(good).complete());
 }
 
-TEST_CASE("spec 10: a malformed meta chunk is dropped with a warning; the file stays valid") {
+TEST_CASE("spec 10: a malformed meta chunk is dropped with a warning and the file stays valid") {
   const FileContents c = test::sample_contents(4, 6, 4, 1);
   const RawChunk ctrl{kCtrl, encode_control(ControlCodec::draco, c.control_mesh)};
   const RawChunk levl{kLevl, encode_level(c.levels[0], 3).value()};
