@@ -162,3 +162,58 @@ expect_run(1 "warning\\(s\\) under --strict; [^\n]*strict.dbss not written" ${DB
 if(EXISTS ${WORK}/strict.dbss)
   message(FATAL_ERROR "--strict with warnings left an output behind")
 endif()
+
+# `dbss info --hashes` (spec/decoding.md section 8): the test vector's lines
+# must be exactly the ones the spec publishes, a golden file's hashes the
+# recorded ones.
+set(vector ${SOURCE}/spec/test-vector/open-bipyramid-2-levels.dbss)
+file(READ ${SOURCE}/spec/decoding.md spec_md)
+if(NOT spec_md MATCHES "```hashes\n([^`]*)```")
+  message(FATAL_ERROR "spec/decoding.md has no ```hashes block")
+endif()
+set(published "${CMAKE_MATCH_1}")
+execute_process(COMMAND ${DBSS} info --hashes ${vector} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT rc EQUAL 0 OR NOT out STREQUAL published OR NOT err STREQUAL "")
+  message(FATAL_ERROR "info --hashes on the test vector: exit ${rc}\n${out}expected:\n${published}stderr: ${err}")
+endif()
+set(golden ${SOURCE}/tests/golden/v1/torus-4-levels)
+file(STRINGS ${golden}.hashes recorded)
+execute_process(COMMAND ${DBSS} info --hashes ${golden}.dbss RESULT_VARIABLE rc OUTPUT_VARIABLE out)
+string(REGEX REPLACE "\n$" "" out "${out}")
+string(REPLACE "\n" ";" lines "${out}")
+set(l 0)
+foreach(line IN LISTS lines)
+  list(GET recorded ${l} hash)
+  if(NOT line MATCHES "^level ${l} vertices [0-9]+ triangles [0-9]+ fnv1a64 ${hash}$")
+    message(FATAL_ERROR "info --hashes on ${golden}.dbss: '${line}', recorded hash ${hash}")
+  endif()
+  math(EXPR l "${l} + 1")
+endforeach()
+list(LENGTH recorded n_recorded)
+if(NOT rc EQUAL 0 OR NOT l EQUAL n_recorded)
+  message(FATAL_ERROR "info --hashes on ${golden}.dbss: exit ${rc}, ${l} lines for ${n_recorded} levels")
+endif()
+expect_run(0 "\"fnv1a64\": \"821e0f790b5869d1\"" ${DBSS} info ${vector} --json --hashes)
+expect_run(0 "--hashes" ${DBSS} info --help)
+
+# spec section 11: an error voids nothing verified before it.  Bytes after
+# the file: decode still writes a verified level (warning, exit 0); info
+# says the file is invalid and which levels are usable (exit 1).
+configure_file(${vector} ${WORK}/trailing.dbss COPYONLY)
+file(APPEND ${WORK}/trailing.dbss "x")
+expect_run(0 "warning: .*trailing_data.*levels 0..2 were verified" ${DBSS} decode ${WORK}/trailing.dbss -o ${WORK}/t.ply --level 2)
+expect_run(1 "levels 0..2 were verified before the error and are usable" ${DBSS} info ${WORK}/trailing.dbss)
+if(HEAD)
+  # Cut inside level 2: level 1 decodes, level 2 is not available.
+  execute_process(COMMAND ${HEAD} -c 400 ${vector} OUTPUT_FILE ${WORK}/cut-vector.dbss)
+  expect_run(0 "level 1, 22 vertices" ${DBSS} decode ${WORK}/cut-vector.dbss -o ${WORK}/c.ply --level 1)
+  expect_run(1 "level 2 is not available: truncated" ${DBSS} decode ${WORK}/cut-vector.dbss -o ${WORK}/c.ply --level 2)
+  expect_run(0 "level 1, 22 vertices" ${DBSS} decode ${WORK}/cut-vector.dbss -o ${WORK}/c.ply)
+endif()
+
+# A valid container whose control mesh is not Draco: info verifies it as
+# decode does, so both fail.
+set(garbage ${SOURCE}/tests/format/data/garbage-control.dbss)
+expect_run(1 "compression: control mesh" ${DBSS} info ${garbage})
+expect_run(1 "\"complete\": false" ${DBSS} info ${garbage} --json)
+expect_run(1 "compression: control mesh" ${DBSS} decode ${garbage} -o ${WORK}/g.ply)

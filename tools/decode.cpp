@@ -22,8 +22,12 @@ constexpr const char* kHelp =
     "  --level L           level to decode, 0 = control mesh (default: the finest\n"
     "                      level in the file)\n"
     "\n"
-    "A truncated file decodes its finest complete level and says so on stderr.\n"
-    "Exit status: 0 written, 1 bad input or usage, 2 internal error.\n";
+    "A damaged or truncated file keeps the levels verified before the damage\n"
+    "(spec/dbss-format.md section 11): the error is printed on stderr as a\n"
+    "warning and, without --level, the finest verified level is written; with\n"
+    "--level L, level L is written if it was verified, else nothing is.\n"
+    "Exit status: 0 written (with or without a warning), 1 bad input, the\n"
+    "requested level not available, or usage, 2 internal error.\n";
 
 int usage(const std::string& m) {
   std::fprintf(stderr, "dbss decode: %s\n\n%s", m.c_str(), kHelp);
@@ -64,23 +68,31 @@ int run_decode(const std::vector<std::string_view>& args) {
   ProgressiveDecoder d;
   d.feed(bytes.value());
   const Status end = d.finish();
-  if (!end.ok() && end.code() != ErrorCode::truncated) {
-    std::fprintf(stderr, "dbss decode: %s: %s\n", input.c_str(), end.to_string().c_str());
-    return 1;
-  }
+  // Levels verified before an error stay usable (spec section 11), so only a
+  // file with no usable control mesh, or a request past what was verified,
+  // fails here.
   const int ready = d.ready_level();
   if (ready < 0) {
     std::fprintf(stderr, "dbss decode: %s: %s\n", input.c_str(), end.to_string().c_str());
     return 1;
   }
-  if (!end.ok())
-    std::fprintf(stderr, "dbss decode: %s is truncated (%s); decoding its finest complete level, %d\n", input.c_str(),
-                 end.message().c_str(), ready);
-  if (level > ready) {
+  const int declared = d.reader().header().level_count;
+  if (level > declared) {
     std::fprintf(stderr, "dbss decode: %s: level %ld is not in the file (finest complete level: %d)\n", input.c_str(),
                  level, ready);
+    if (!end.ok()) std::fprintf(stderr, "dbss decode: %s: %s\n", input.c_str(), end.to_string().c_str());
     return 1;
   }
+  if (level > ready) {
+    std::fprintf(stderr, "dbss decode: %s: level %ld is not available: %s (finest verified level: %d)\n",
+                 input.c_str(), level, end.to_string().c_str(), ready);
+    return 1;
+  }
+  for (const Status& w : d.reader().warnings())
+    std::fprintf(stderr, "dbss decode: warning: %s: %s (ignored)\n", input.c_str(), w.to_string().c_str());
+  if (!end.ok())
+    std::fprintf(stderr, "dbss decode: warning: %s: %s; levels 0..%d were verified before it and are usable\n",
+                 input.c_str(), end.to_string().c_str(), ready);
   const uint32_t want = level < 0 ? static_cast<uint32_t>(ready) : static_cast<uint32_t>(level);
   Progress progress("dbss decode");
   auto mesh = d.decode(want);

@@ -229,18 +229,26 @@ Status Reader::on_head() {
     h.bbox_max[k] = load_f32(d + 36 + 4 * k);
   }
   h.error_target = load_f32(d + 48);
-  if (Status s = check_header(h, at); !s.ok()) return fail(s.code(), s.message(), at);
+  // Spec section 12 fixes the order, so every reader gives an invalid file
+  // the same code: the version, then the length the version implies, then
+  // the fields and the 2^62 bound (the file's own rules), and only then this
+  // reader's limits, so the code of an invalid file never depends on them.
+  const Status fields = check_header(h, at);
+  if (fields.code() == ErrorCode::unsupported_version) return fail(fields.code(), fields.message(), at);
   if (h.version_minor == 0 && chunk_length_ != kHeadSize)
     return fail(ErrorCode::bad_structure, "HEAD of version 1.0 must be 56 bytes long", chunk_offset_);
+  if (!fields.ok()) return fail(fields.code(), fields.message(), at);
   if (d[11] != 0 || load_u32(d + 52) != 0) return fail(ErrorCode::bad_field, "HEAD: reserved bytes are not zero", at);
+  const auto finest = counts_at_level({h.control_vertex_count, h.control_edge_count, h.control_triangle_count},
+                                      h.level_count);
+  if (!finest)
+    return fail(ErrorCode::bad_field,
+                "HEAD: a count of level " + std::to_string(h.level_count) + " passes 2^62", at);
   if (h.level_count > limits_.max_levels)
     return fail(ErrorCode::limit_exceeded,
                 "file has " + std::to_string(h.level_count) + " levels, over the limit of " +
                     std::to_string(limits_.max_levels),
                 at + 8);
-  const auto finest = counts_at_level({h.control_vertex_count, h.control_edge_count, h.control_triangle_count},
-                                      h.level_count);
-  if (!finest) return fail(ErrorCode::bad_field, "HEAD: vertex counts overflow at the finest level", at);
   if (finest->vertices > limits_.max_vertices)
     return fail(ErrorCode::limit_exceeded,
                 "level " + std::to_string(h.level_count) + " would have " + std::to_string(finest->vertices) +
@@ -260,11 +268,6 @@ Status Reader::on_toc() {
     return fail(ErrorCode::bad_structure,
                 "INDX: entry_count " + std::to_string(count) + " disagrees with the chunk length", at + 8);
   if (load_u32(d + 12) != 0) return fail(ErrorCode::bad_field, "INDX: reserved field is not zero", at + 12);
-  if (file_size > limits_.max_file_size)
-    return fail(ErrorCode::limit_exceeded,
-                "file declares " + std::to_string(file_size) + " bytes, over the limit of " +
-                    std::to_string(limits_.max_file_size),
-                at);
 
   std::vector<TocEntry> toc;
   toc.reserve(count);  // count <= max_chunks, checked in begin_chunk
@@ -295,11 +298,6 @@ Status Reader::on_toc() {
     } else if (e.type.critical()) {
       return fail(ErrorCode::unknown_critical_chunk,
                   name + ": critical chunk type unknown to this reader (version 1.0)", eat);
-    } else if (e.length > limits_.max_ancillary_bytes) {
-      return fail(ErrorCode::limit_exceeded,
-                  name + ": " + std::to_string(e.length) + " bytes, over the ancillary limit of " +
-                      std::to_string(limits_.max_ancillary_bytes),
-                  eat + 4);
     }
     toc.push_back(e);
   }
@@ -312,6 +310,21 @@ Status Reader::on_toc() {
   if (expect != file_size)
     return fail(ErrorCode::bad_structure,
                 "INDX: file_size " + std::to_string(file_size) + " but the chunks end at " + std::to_string(expect), at);
+  // This reader's limits come after the format's rules (spec section 12):
+  // a table that breaks both is reported as broken, whatever the limits.
+  if (file_size > limits_.max_file_size)
+    return fail(ErrorCode::limit_exceeded,
+                "file declares " + std::to_string(file_size) + " bytes, over the limit of " +
+                    std::to_string(limits_.max_file_size),
+                at);
+  for (size_t i = 0; i < toc.size(); ++i) {
+    const TocEntry& e = toc[i];
+    if (!e.type.critical() && e.length > limits_.max_ancillary_bytes)
+      return fail(ErrorCode::limit_exceeded,
+                  "INDX entry " + std::to_string(i) + " ('" + printable(e.type) + "'): " + std::to_string(e.length) +
+                      " bytes, over the ancillary limit of " + std::to_string(limits_.max_ancillary_bytes),
+                  at + 16 + 16 * uint64_t{i} + 4);
+  }
   toc_ = std::move(toc);
   file_size_ = file_size;
   has_toc_ = true;
@@ -335,8 +348,13 @@ Status Reader::on_level() {
   const uint8_t* d = chunk_data_.data();
   const uint64_t at = chunk_offset_ + 8;
   const uint32_t expected_index = levels_ready() + 1;
-  if (chunk_length_ < kLevelFixed + 1)
-    return fail(ErrorCode::bad_field, "LEVL " + std::to_string(expected_index) + ": chunk too short", at);
+  // Spec section 9 lists these checks in this order with one code each.  A
+  // 16-byte LEVL has all its fields and an empty frame: a zstd error below.
+  if (chunk_length_ < kLevelFixed)
+    return fail(ErrorCode::bad_field,
+                "LEVL " + std::to_string(expected_index) + ": " + std::to_string(chunk_length_) +
+                    " bytes, too short for its 16 bytes of fields",
+                at);
   Level level;
   level.index = d[0];
   const uint8_t coding = d[1];
@@ -373,7 +391,7 @@ Status Reader::on_level() {
   if (declared == ZSTD_CONTENTSIZE_ERROR)
     return fail(ErrorCode::compression, name + ": bad zstd frame header", at + kLevelFixed);
   if (declared != ZSTD_CONTENTSIZE_UNKNOWN && declared != raw_size)
-    return fail(ErrorCode::bad_field, name + ": zstd frame holds " + std::to_string(declared) + " bytes, raw_size says " +
+    return fail(ErrorCode::compression, name + ": zstd frame holds " + std::to_string(declared) + " bytes, raw_size says " +
                                           std::to_string(raw_size),
                 at + kLevelFixed);
   // raw_size <= 4 * count and count is bounded by max_vertices via HEAD.
@@ -392,33 +410,14 @@ Status Reader::on_level() {
 }
 
 Status Reader::on_meta() {
-  const uint8_t* d = chunk_data_.data();
-  const size_t n = chunk_data_.size();
-  const uint64_t at = chunk_offset_ + 8;
-  if (n < 4) return fail(ErrorCode::bad_field, "meta: chunk too short", at);
-  const uint32_t count = load_u32(d);
-  if (count > (n - 4) / 6)  // each entry takes at least 1 + 1 + 4 bytes
-    return fail(ErrorCode::bad_field, "meta: " + std::to_string(count) + " entries cannot fit in the chunk", at);
+  // 'meta' is ancillary (spec section 10): a reader that skips it must reach
+  // the same verdict on the file as one that parses it, so a malformed one
+  // is dropped whole with a warning, never an error.
   std::vector<MetaEntry> entries;
-  entries.reserve(count);
-  size_t p = 4;
-  for (uint32_t i = 0; i < count; ++i) {
-    if (n - p < 1) return fail(ErrorCode::bad_field, "meta: entry " + std::to_string(i) + " cut short", at + p);
-    const size_t klen = d[p++];
-    if (n - p < klen + 4) return fail(ErrorCode::bad_field, "meta: entry " + std::to_string(i) + " cut short", at + p);
-    MetaEntry e;
-    e.key.assign(reinterpret_cast<const char*>(d + p), klen);
-    p += klen;
-    if (!meta_key_valid(e.key))
-      return fail(ErrorCode::bad_field, "meta: entry " + std::to_string(i) + " has an empty key or a NUL in it", at + p);
-    const uint32_t vlen = load_u32(d + p);
-    p += 4;
-    if (n - p < vlen) return fail(ErrorCode::bad_field, "meta: entry " + std::to_string(i) + " cut short", at + p);
-    e.value.assign(reinterpret_cast<const char*>(d + p), vlen);
-    p += vlen;
-    entries.push_back(std::move(e));
+  if (Status s = parse_meta(chunk_data_, chunk_offset_ + 8, entries); !s.ok()) {
+    warnings_.push_back(std::move(s));
+    return {};
   }
-  if (p != n) return fail(ErrorCode::bad_field, "meta: bytes after the last entry", at + p);
   for (auto& e : entries) metadata_.push_back(std::move(e));
   return {};
 }

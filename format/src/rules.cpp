@@ -4,6 +4,8 @@
 #include <cstring>
 #include <string>
 
+#include "byte_io.h"
+
 namespace dbss::format::detail {
 
 Status check_header(const Header& h, uint64_t at) {
@@ -134,8 +136,71 @@ Status unpack_displacements(std::span<const uint8_t> raw, DisplacementCoding cod
   return {};
 }
 
+bool utf8_valid(std::string_view s) {
+  // RFC 3629: shortest forms only, no surrogates, nothing past U+10FFFF.
+  size_t i = 0;
+  const size_t n = s.size();
+  while (i < n) {
+    const auto b = static_cast<unsigned char>(s[i]);
+    size_t more;
+    uint32_t cp, min;
+    if (b < 0x80) {
+      ++i;
+      continue;
+    } else if ((b & 0xE0) == 0xC0) {
+      more = 1, cp = b & 0x1F, min = 0x80;
+    } else if ((b & 0xF0) == 0xE0) {
+      more = 2, cp = b & 0x0F, min = 0x800;
+    } else if ((b & 0xF8) == 0xF0) {
+      more = 3, cp = b & 0x07, min = 0x10000;
+    } else {
+      return false;
+    }
+    if (n - i - 1 < more) return false;
+    for (size_t k = 1; k <= more; ++k) {
+      const auto c = static_cast<unsigned char>(s[i + k]);
+      if ((c & 0xC0) != 0x80) return false;
+      cp = (cp << 6) | (c & 0x3F);
+    }
+    if (cp < min || cp > 0x10FFFF || (cp >= 0xD800 && cp <= 0xDFFF)) return false;
+    i += more + 1;
+  }
+  return true;
+}
+
 bool meta_key_valid(const std::string& key) {
-  return !key.empty() && key.size() <= 255 && key.find('\0') == std::string::npos;
+  return !key.empty() && key.size() <= 255 && key.find('\0') == std::string::npos && utf8_valid(key);
+}
+
+Status parse_meta(std::span<const uint8_t> data, uint64_t at, std::vector<MetaEntry>& entries) {
+  const uint8_t* d = data.data();
+  const size_t n = data.size();
+  auto bad = [&](const std::string& what, size_t p) { return Status(ErrorCode::bad_field, "meta: " + what, at + p); };
+  if (n < 4) return bad("chunk too short for its entry count", 0);
+  const uint32_t count = load_u32(d);
+  if (count > (n - 4) / 6)  // each entry takes at least 1 + 1 + 4 bytes
+    return bad(std::to_string(count) + " entries cannot fit in the chunk", 0);
+  entries.clear();
+  entries.reserve(count);
+  size_t p = 4;
+  for (uint32_t i = 0; i < count; ++i) {
+    const std::string entry = "entry " + std::to_string(i);
+    if (n - p < 1) return bad(entry + " cut short", p);
+    const size_t klen = d[p++];
+    if (n - p < klen + 4) return bad(entry + " cut short", p);
+    MetaEntry e;
+    e.key.assign(reinterpret_cast<const char*>(d + p), klen);
+    if (!meta_key_valid(e.key)) return bad(entry + " has an empty key, a NUL in it or invalid UTF-8", p);
+    p += klen;
+    const uint32_t vlen = load_u32(d + p);
+    p += 4;
+    if (n - p < vlen) return bad(entry + " cut short", p);
+    e.value.assign(reinterpret_cast<const char*>(d + p), vlen);
+    p += vlen;
+    entries.push_back(std::move(e));
+  }
+  if (p != n) return bad("bytes after the last entry", p);
+  return {};
 }
 
 }  // namespace dbss::format::detail

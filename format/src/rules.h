@@ -4,6 +4,8 @@
 
 #include <cstdint>
 #include <span>
+#include <string>
+#include <string_view>
 #include <vector>
 
 #include "dbss/format/container.h"
@@ -27,7 +29,12 @@ Status unpack_displacements(std::span<const uint8_t> raw, DisplacementCoding cod
 // Valid raw_size for `count` values in `coding`.
 bool raw_size_valid(uint64_t raw_size, DisplacementCoding coding, uint64_t count);
 
-// MetaEntry key rule: 1..255 bytes, no NUL.
+// MetaEntry key rule: 1..255 bytes of valid UTF-8 (RFC 3629), no NUL.
 bool meta_key_valid(const std::string& key);
+bool utf8_valid(std::string_view s);
+
+// The entries of one 'meta' chunk's data (spec section 10); bad_field with
+// the offset (`at` + position in `data`) of the first problem.
+Status parse_meta(std::span<const uint8_t> data, uint64_t at, std::vector<MetaEntry>& entries);
 
 }  // namespace dbss::format::detail

@@ -75,7 +75,7 @@ Result<std::vector<uint8_t>> encode_metadata(const std::vector<MetaEntry>& entri
   put_u32(d, static_cast<uint32_t>(entries.size()));
   for (const MetaEntry& e : entries) {
     if (!meta_key_valid(e.key))
-      return Status(ErrorCode::invalid_argument, "metadata key '" + e.key + "' must be 1..255 bytes without NUL");
+      return Status(ErrorCode::invalid_argument, "metadata key '" + e.key + "' must be 1..255 bytes of UTF-8 without NUL");
     if (e.value.size() > 0xFFFFFFFFu) return Status(ErrorCode::invalid_argument, "metadata value too long");
     put_u8(d, static_cast<uint8_t>(e.key.size()));
     put_bytes(d, e.key.data(), e.key.size());

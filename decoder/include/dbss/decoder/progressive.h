@@ -5,7 +5,10 @@
 // its Limits before allocating; the control mesh must have exactly the
 // counts the header declares (so every later allocation is bounded by the
 // header's checked counts), and no function throws or aborts.  The first
-// error is sticky.
+// error is sticky, but a container error (a damaged, malformed or cut chunk)
+// voids nothing verified before it (spec section 11): ready_level() still
+// counts those levels and decode() still returns them, while status() keeps
+// reporting the error.  A decoder-side error (a bad control mesh) voids all.
 #pragma once
 
 #include <cstdint>
@@ -55,14 +58,16 @@ class ProgressiveDecoder {
 
   // Parses `bytes` (any piece size).  Cheap: no subdivision happens here.
   Status feed(std::span<const uint8_t> bytes);
-  // End of input; `truncated` if the file was cut (ready levels stay usable).
+  // End of input; `truncated` if the file was cut, or the container's first
+  // error.  Ready levels stay usable either way.
   Status finish();
 
   // The first error, or ok.
   const Status& status() const noexcept;
   const format::Reader& reader() const noexcept;
 
-  // Finest level whose bytes are verified: -1 before the control mesh is in.
+  // Finest level whose bytes are verified: -1 before the control mesh is in
+  // (or after a decoder-side error).  Not lowered by a later container error.
   int ready_level() const noexcept;
 
   // Makes `level` (0..ready_level()) current and returns it.  Going finer

@@ -11,6 +11,11 @@
 // decompressed displacements of verified levels, bounded by Limits).  No
 // function throws or aborts; the first error is sticky, as in libspng: a
 // failed reader stays failed and reports the same Status.
+//
+// An error voids nothing verified before it (spec section 11): after a
+// damaged or cut chunk, the header, the table of contents, the control
+// payload, levels 1..levels_ready() and the metadata read so far stay
+// available, and the status still reports the error.
 #pragma once
 
 #include <cstddef>
@@ -84,6 +89,10 @@ class Reader {
   const std::vector<MetaEntry>& metadata() const noexcept { return metadata_; }
   // Verified ancillary chunks of types this reader does not know (skipped).
   size_t ancillary_skipped() const noexcept { return ancillary_skipped_; }
+  // Problems that leave the file valid (spec section 10): a 'meta' chunk
+  // whose CRC holds but whose entries are malformed is dropped whole, and
+  // its bad_field status, with the offset of the problem, is kept here.
+  const std::vector<Status>& warnings() const noexcept { return warnings_; }
 
  private:
   enum class Stage { signature, chunk_head, chunk_data, chunk_crc, done };
@@ -129,6 +138,7 @@ class Reader {
   std::vector<Level> levels_;
   std::vector<MetaEntry> metadata_;
   size_t ancillary_skipped_ = 0;
+  std::vector<Status> warnings_;
 };
 
 // Convenience: feeds `bytes` whole and calls finish().  The returned reader
