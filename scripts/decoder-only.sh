@@ -43,8 +43,12 @@ if "$dbss" encode examples/double-torus.xyz -o "$work/x.dbss" 2>"$work/encode.er
   exit 1
 fi
 grep -q "built without the encoder" "$work/encode.err"
+# Every golden level decodes to its recorded hash (spec/decoding.md section 8).
 for f in tests/golden/v1/*.dbss; do
-  "$dbss" info "$f" >/dev/null
+  "$dbss" info --hashes "$f" | awk '{print $NF}' | cmp -s - "${f%.dbss}.hashes" || {
+    echo "decoder-only: $f does not decode to ${f%.dbss}.hashes" >&2
+    exit 1
+  }
   "$dbss" decode "$f" -o "$work/out.ply" >/dev/null
 done
 

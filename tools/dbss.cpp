@@ -24,7 +24,7 @@ constexpr const char* kUsage =
     "commands:\n"
     "  encode INPUT -o OUT.dbss   reconstruct a point cloud or mesh and write it\n"
     "  decode IN.dbss -o OUT      one level as a .ply, .obj, .off or .stl mesh\n"
-    "  info IN.dbss [--json]      chunks, sizes, per-level counts, steps and checksum status\n"
+    "  info IN.dbss [--json|--hashes]  chunks, sizes, per-level counts, steps, checks; --hashes: per-level hashes\n"
     "  compare INPUT [--json]     sizes and errors per level: dbss vs full-vertex DSS vs Draco\n"
     "\n"
     "Run 'dbss <command> --help' for a command's options.\n";

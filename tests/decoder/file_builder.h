@@ -45,9 +45,10 @@ inline std::vector<uint8_t> build_file(const TriangleMesh& mesh, uint8_t levels,
   return format::serialize(c).value();
 }
 
-// FNV-1a over the bit patterns of a float array: bit-exact comparisons.
+// FNV-1a 64 over the bit patterns of a float array (spec/decoding.md
+// section 8's level hash on a little-endian host): bit-exact comparisons.
 inline uint64_t hash_floats(const float* p, size_t n) {
-  uint64_t h = 1469598103934665603ull;
+  uint64_t h = 14695981039346656037ull;
   const auto* b = reinterpret_cast<const uint8_t*>(p);
   for (size_t i = 0; i < 4 * n; ++i) h = (h ^ b[i]) * 1099511628211ull;
   return h;

@@ -37,21 +37,6 @@ std::vector<uint64_t> read_hashes(const std::string& path) {
   return out;
 }
 
-// The .hashes files of tests/golden/v1 were written with the offset basis
-// 1469598103934665603, the standard FNV-1a 64 basis 14695981039346656037
-// with its last digit lost. decoding.md section 8 says "FNV-1a 64-bit",
-// which dbss_ref::fnv1a64 implements; this is the hash the files hold, so
-// both are checked below (the standard one against a recorded value).
-uint64_t golden_v1_hash(const dbss_ref::Mesh& m) {
-  uint64_t h = 1469598103934665603ull;
-  for (float x : m.positions) {
-    uint8_t b[4];
-    std::memcpy(b, &x, 4);  // little-endian hosts only, as the goldens
-    for (uint8_t c : b) h = (h ^ c) * 1099511628211ull;
-  }
-  return h;
-}
-
 dbss_ref::Mesh to_ref(const dbss::TriangleMesh& m) { return {m.positions, m.triangles}; }
 
 bool same_bits(std::span<const float> a, std::span<const float> b) {
@@ -94,7 +79,7 @@ TEST_CASE("every golden file decodes to its recorded hashes") {
     const dbss_ref::Decoded d = dbss_ref::decode(bytes);
     CHECK(d.error.empty());
     std::vector<uint64_t> got;
-    for (const auto& level : d.levels) got.push_back(golden_v1_hash(level));
+    for (const auto& level : d.levels) got.push_back(dbss_ref::fnv1a64(level));
     CHECK(got == expect);
   }
   // The spec's standard FNV-1a 64 of the icosahedron's finest level, as
