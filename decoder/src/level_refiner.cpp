@@ -1,7 +1,8 @@
+// LevelRefiner: the refinement step as a public object, for the encoder's closed loop.
 #include "dbss/decoder/level_refiner.h"
 
 #include "dbss/decoder/topology.h"
-#include "refiner.h"
+#include "refinement_step.h"
 
 namespace dbss {
 

@@ -5,7 +5,7 @@
 #include <thread>
 
 #include "dbss/decoder/control_mesh.h"
-#include "refiner.h"
+#include "refinement_step.h"
 
 namespace dbss {
 

@@ -1,4 +1,5 @@
-#include "refiner.h"
+// Refinement step (detail::Refiner): one level to the next on reused buffers, for both decoders.
+#include "refinement_step.h"
 
 #include <cstring>
 #include <utility>
