@@ -24,8 +24,8 @@ names=() files=() olds=() news=()
 m() { names+=("$1"); files+=("$2"); olds+=("$3"); news+=("$4"); }
 
 # The five of issue 20.
-m quantizer-floor encoder/src/levels.cpp \
-  'std::nearbyint(s.distance / step)' 'std::floor(s.distance / step)'
+m quantizer-floor encoder/include/dbss/encoder/quantize.h \
+  'std::nearbyint(distance / step)' 'std::floor(distance / step)'
 m carving-26-neighbours encoder/src/cell_carving.cpp \
   '    if (i > 0) visit(i - 1, j, k);' \
   '    for (int dk = -1; dk <= 1; ++dk) for (int dj = -1; dj <= 1; ++dj) for (int di = -1; di <= 1; ++di) { const int x = i + di, y = j + dj, z = k + dk; if (x >= 0 && y >= 0 && z >= 0 && x < g.n[0] && y < g.n[1] && z < g.n[2]) visit(x, y, z); }'
@@ -58,8 +58,8 @@ m edge-order-by-second-half decoder/src/topology.cpp \
   'if (o == kNoHalfEdge || o > h) {' 'if (o == kNoHalfEdge || o < h) {'
 m valence-limit-unchecked decoder/src/topology.cpp 'if (valence > kMaxValence)' 'if (false && valence > kMaxValence)'
 # Encoder.
-m step-doubled encoder/src/levels.cpp \
-  'static_cast<float>(2 * o.error * diagonal)' 'static_cast<float>(4 * o.error * diagonal)'
+m step-doubled encoder/include/dbss/encoder/quantize.h \
+  'static_cast<float>(2 * error * diagonal)' 'static_cast<float>(4 * error * diagonal)'
 m sampler-farthest-hit encoder/src/sampling.cpp \
   '(!hit || std::abs(t) < std::abs(best))' '(!hit || std::abs(t) > std::abs(best))'
 m sampler-query-axes-swapped encoder/src/sampling.cpp \

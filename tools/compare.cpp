@@ -137,8 +137,7 @@ int run_compare(const std::vector<std::string_view>& args) {
 
   std::printf("%s: %zu points, control mesh %zu vertices / %zu triangles, step %.3g (error target %.3g of the diagonal)\n\n",
               input.c_str(), points.value().size(), c.encoding.control.vertex_count(),
-              c.encoding.control.triangle_count(), 2 * c.encoding.error * c.encoding.diagonal,
-              c.encoding.error);
+              c.encoding.control.triangle_count(), double(c.encoding.step), c.encoding.error);
   std::printf("%-5s %9s | %9s %9s | %9s %9s %9s", "level", "triangles", "dbss smp", "DSS smp", "dbss B", "DSS lvl B",
               "DSS all B");
   for (int b : co.draco_bits) std::printf(" %7s%-2d", "Draco", b);

@@ -48,7 +48,7 @@ int run_decode(const std::vector<std::string_view>& args) {
       output = args[++i];
     } else if (a == "--level") {
       if (i + 1 >= args.size()) return usage("--level needs a number");
-      if (!parse_int(args[++i], 0, 30, level)) return usage("--level needs a whole number from 0 to 30");
+      if (!parse_int(args[++i], 0, format::kMaxLevelsInPractice, level)) return usage("--level needs a whole number from 0 to " + std::to_string(format::kMaxLevelsInPractice));
     } else if (!a.empty() && a[0] == '-') {
       return usage("unknown option '" + std::string(a) + "'");
     } else if (input.empty()) {

@@ -28,6 +28,7 @@ const char* const kEncodeOptionsHelp =
     "                         points end; auto picks one and says why\n"
     "  --keep-outliers        keep every point (default: isolated points and\n"
     "                         clusters under 2% of the points are dropped)\n";
+static_assert(format::kMaxLevelsInPractice == 8, "--levels' help above says 0..8");
 
 
 OptionParse parse_encode_option(const std::vector<std::string_view>& args, size_t& i, EncodeOptions& o,
@@ -58,7 +59,8 @@ OptionParse parse_encode_option(const std::vector<std::string_view>& args, size_
     if (!parse_int(v, 8, 30, n)) return error = "--control-bits needs a whole number from 8 to 30", OptionParse::bad;
     o.control_bits = static_cast<int>(n);
   } else if (a == "--levels") {
-    if (!parse_int(v, 0, 8, n)) return error = "--levels needs a whole number from 0 to 8", OptionParse::bad;
+    if (!parse_int(v, 0, format::kMaxLevelsInPractice, n))
+      return error = "--levels needs a whole number from 0 to " + std::to_string(format::kMaxLevelsInPractice), OptionParse::bad;
     o.levels = static_cast<uint32_t>(n);
   } else if (a == "--effort") {
     if (!parse_int(v, 1, 22, n)) return error = "--effort needs a whole number from 1 to 22", OptionParse::bad;

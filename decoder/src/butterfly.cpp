@@ -5,7 +5,6 @@
 namespace dbss {
 
 namespace {
-#include "butterfly_weights.inc"
 
 // Appends one stencil's terms to the generic tables.
 struct Builder {
@@ -19,11 +18,6 @@ struct Builder {
 using detail::kRegularWeights;
 
 }  // namespace
-
-double butterfly_weight(uint32_t k, uint32_t j) noexcept {
-  if (k < 3 || k > kMaxValence || j >= k) return 0.0;
-  return kButterflyWeights[kButterflyWeightOffset[k] + j];
-}
 
 Stencils build_stencils(const LevelTopology& lt, bool all_generic) {
   const detail::TopologyRef t = detail::ref_of(lt);

@@ -1,11 +1,13 @@
+// LevelRefiner: the refinement step as a public object, for the encoder's closed loop.
 #include "dbss/decoder/level_refiner.h"
 
 #include "dbss/decoder/topology.h"
-#include "refiner.h"
+#include "refinement_step.h"
 
 namespace dbss {
 
 struct LevelRefiner::State {
+  explicit State(Kernels kernels) : refiner(kernels) {}
   LevelTopology base;
   std::vector<float> base_positions;
   detail::Refiner refiner;
@@ -16,10 +18,10 @@ LevelRefiner::~LevelRefiner() = default;
 LevelRefiner::LevelRefiner(LevelRefiner&&) noexcept = default;
 LevelRefiner& LevelRefiner::operator=(LevelRefiner&&) noexcept = default;
 
-Result<LevelRefiner> LevelRefiner::create(const TriangleMesh& control) {
+Result<LevelRefiner> LevelRefiner::create(const TriangleMesh& control, const LevelRefinerOptions& options) {
   auto topo = build_topology(static_cast<uint32_t>(control.vertex_count()), control.triangles);
   if (!topo.ok()) return topo.status();
-  auto s = std::make_unique<State>();
+  auto s = std::make_unique<State>(options.kernels);
   s->base = std::move(topo).value();
   s->base_positions = control.positions;
   s->refiner.reset(s->base, s->base_positions);

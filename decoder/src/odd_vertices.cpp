@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
 #include <cstring>
 
 #if defined(__x86_64__) && defined(__GNUC__)
@@ -41,7 +40,7 @@ namespace kernels_generic {
 }  // namespace kernels_generic
 
 // The same kernels for AVX2, chosen at run time; tests run both
-// (DBSS_BASELINE_KERNELS=1 forces the baseline) against the same golden bits.
+// (Kernels::baseline forces the baseline) against the same golden bits.
 #if defined(__x86_64__) && defined(__GNUC__)
 #define DBSS_HAVE_AVX2_KERNELS 1
 #if defined(__clang__)
@@ -62,38 +61,15 @@ namespace kernels_avx2 {
 #endif
 #endif
 
-namespace {
-bool use_avx2() {
+OddVertexKernels select_kernels(Kernels choice) {
 #ifdef DBSS_HAVE_AVX2_KERNELS
   static const bool cpu = __builtin_cpu_supports("avx2");
-  return cpu && !std::getenv("DBSS_BASELINE_KERNELS");
+  if (choice == Kernels::best && cpu)
+    return {kernels_avx2::stencil_points, kernels_avx2::displaced_points, kernels_avx2::displaced_points_chosen};
 #else
-  return false;
+  (void)choice;
 #endif
-}
-}  // namespace
-
-void stencil_points(const TopologyRef& t, const float* p, uint32_t fb, uint32_t fe, float* odd, float* per_half) {
-#ifdef DBSS_HAVE_AVX2_KERNELS
-  if (use_avx2()) return kernels_avx2::stencil_points(t, p, fb, fe, odd, per_half);
-#endif
-  kernels_generic::stencil_points(t, p, fb, fe, odd, per_half);
-}
-
-void displaced_points(const TopologyRef& t, const float* p, const float* per_half, const int32_t* q, float step,
-                      uint32_t fb, uint32_t fe, float* out) {
-#ifdef DBSS_HAVE_AVX2_KERNELS
-  if (use_avx2()) return kernels_avx2::displaced_points(t, p, per_half, q, step, fb, fe, out);
-#endif
-  kernels_generic::displaced_points(t, p, per_half, q, step, fb, fe, out);
-}
-
-void displaced_points_chosen(const TopologyRef& t, const float* p, const float* per_half, const OddChooser& choose,
-                             int32_t* q, float step, uint32_t fb, uint32_t fe, float* out) {
-#ifdef DBSS_HAVE_AVX2_KERNELS
-  if (use_avx2()) return kernels_avx2::displaced_points_chosen(t, p, per_half, choose, q, step, fb, fe, out);
-#endif
-  kernels_generic::displaced_points_chosen(t, p, per_half, choose, q, step, fb, fe, out);
+  return {kernels_generic::stencil_points, kernels_generic::displaced_points, kernels_generic::displaced_points_chosen};
 }
 
 }  // namespace dbss::detail

@@ -8,7 +8,8 @@
 
 #include <cstdint>
 
-#include "dbss/decoder/level_refiner.h"
+#include "dbss/decoder/kernels.h"
+#include "dbss/decoder/odd_chooser.h"
 #include "topology_ref.h"
 
 namespace dbss::detail {
@@ -18,18 +19,29 @@ namespace dbss::detail {
 // edge number), or, when `odd` is null, to per_half[3x..3x+2] for both
 // half-edges x of the edge: the normal pass then finds the ring of an odd
 // vertex in the two triangles of its edge, without chasing edge numbers.
-void stencil_points(const TopologyRef& t, const float* p, uint32_t fb, uint32_t fe, float* odd, float* per_half);
+//
+// For the same edges, displaced_points: the normal at the odd vertex from
+// the undisplaced child level (evens p, odds per half-edge as
+// stencil_points wrote them), and out[3e..] = odd vertex moved by q[e] *
+// step along it.
+//
+// displaced_points_chosen: the same, with each q[e] chosen by `choose` from
+// the undisplaced point and its unit normal (as this pass computes them)
+// and written to q[e]: the encoder's closed loop, through the decoder's own
+// arithmetic.
+//
+// One instruction set's build of the three, chosen once per decoder (not
+// per call): every build gives the same bits.
+struct OddVertexKernels {
+  void (*stencil_points)(const TopologyRef& t, const float* p, uint32_t fb, uint32_t fe, float* odd, float* per_half);
+  void (*displaced_points)(const TopologyRef& t, const float* p, const float* per_half, const int32_t* q, float step,
+                           uint32_t fb, uint32_t fe, float* out);
+  void (*displaced_points_chosen)(const TopologyRef& t, const float* p, const float* per_half,
+                                  const OddChooser& choose, int32_t* q, float step, uint32_t fb, uint32_t fe,
+                                  float* out);
+};
 
-// For the same edges: the normal at the odd vertex from the undisplaced
-// child level (evens p, odds per half-edge as stencil_points wrote them),
-// and out[3e..] = odd vertex moved by q[e] * step along it.
-void displaced_points(const TopologyRef& t, const float* p, const float* per_half, const int32_t* q, float step,
-                      uint32_t fb, uint32_t fe, float* out);
-
-// The same, with each q[e] chosen by `choose` from the undisplaced point and
-// its unit normal (as this pass computes them) and written to q[e]: the
-// encoder's closed loop, through the decoder's own arithmetic.
-void displaced_points_chosen(const TopologyRef& t, const float* p, const float* per_half, const OddChooser& choose,
-                             int32_t* q, float step, uint32_t fb, uint32_t fe, float* out);
+// The build `choice` asks for, among those this processor runs.
+OddVertexKernels select_kernels(Kernels choice);
 
 }  // namespace dbss::detail

@@ -5,7 +5,7 @@
 #include <thread>
 
 #include "dbss/decoder/control_mesh.h"
-#include "refiner.h"
+#include "refinement_step.h"
 
 namespace dbss {
 
@@ -28,7 +28,7 @@ struct ProgressiveDecoder::State {
   std::vector<std::vector<float>> kept_positions;
   std::vector<std::vector<uint32_t>> kept_triangles;
 
-  explicit State(const DecoderOptions& o) : options(o), reader(o.limits) {
+  explicit State(const DecoderOptions& o) : options(o), reader(o.limits), current(o.kernels) {
     threads = o.threads ? o.threads : std::max(1u, std::thread::hardware_concurrency());
   }
 

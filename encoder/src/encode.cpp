@@ -10,7 +10,7 @@
 #include "dbss/decoder/topology.h"
 #include "dbss/encoder/control_mesh_codec.h"
 #include "dbss/encoder/point_index.h"
-#include "dbss/format/reader.h"
+#include "dbss/encoder/quantize.h"
 #include "dbss/format/writer.h"
 
 namespace dbss {
@@ -80,18 +80,28 @@ Result<Encoding> encode_points(const PointIndex& input_index, const EncodeOption
   for (int a = 0; a < 3; ++a) diag2 += std::pow(double(c.header.bbox_max[a]) - c.header.bbox_min[a], 2);
   e.diagonal = std::sqrt(diag2);
 
+  // The quantization step, resolved here once: every level (and `dbss
+  // compare`'s baseline) uses it as it is.  The error target is what the
+  // header and `meta` report.
+  if (o.step > 0) {
+    e.step = static_cast<float>(o.step);
+    e.error = o.step / (2 * e.diagonal);
+  } else {
+    e.step = quantization_step(o.error, e.diagonal);
+    e.error = o.error;
+  }
+
   t = Clock::now();
   LevelEncodeOptions lo;
   lo.levels = o.levels;
-  e.error = o.step > 0 ? o.step / (2 * e.diagonal) : o.error;
-  lo.error = e.error;
+  lo.step = e.step;
   lo.zstd_level = o.effort;
   lo.threads = std::max(1u, o.threads);
   if (o.on_progress)
     lo.on_level = [&](uint32_t l) {
       o.on_progress("sampling level " + std::to_string(l) + " of " + std::to_string(o.levels));
     };
-  auto encoded = encode_levels(e.control, index, e.diagonal, lo);
+  auto encoded = encode_levels(e.control, index, lo);
   if (!encoded.ok()) return encoded.status();
   e.levels = std::move(encoded).value();
   e.seconds.levels = since(t);
@@ -105,6 +115,7 @@ Result<Encoding> encode_points(const PointIndex& input_index, const EncodeOption
   c.header.level_count = static_cast<uint8_t>(o.levels);
   c.header.error_target = static_cast<float>(e.error);
   c.levels = e.levels.levels;
+  c.level_data = e.levels.chunks;  // compressed once, when each level's coding was chosen
   char error_text[32];
   std::snprintf(error_text, sizeof error_text, "%g", e.error);
   const std::string params = "grid=" + std::to_string(e.stages.carving.grid) + " control-faces=" +
@@ -128,17 +139,10 @@ Result<Encoding> encode_points(const PointIndex& input_index, const EncodeOption
     c.metadata.push_back({"unsupported.bridged_area_share", error_text});
   }
   for (const ScanWarning& w : e.check.warnings) c.metadata.push_back({"warning." + w.code, w.message});
-  auto bytes = format::serialize(c, {o.effort});
-  if (!bytes.ok()) return bytes.status();
-  e.bytes = std::move(bytes).value();
-  format::Limits limits;  // our own file: only the format's ceilings apply
-  limits.max_levels = format::kMaxLevelsInFormat;
-  limits.max_vertices = uint64_t{1} << 62;
-  limits.max_file_size = uint64_t{1} << 62;
-  format::Reader reader(limits);
-  if (Status s = reader.feed(e.bytes); !s.ok()) return Status(ErrorCode::internal, "own file does not read back: " + s.to_string());
-  if (Status s = reader.finish(); !s.ok()) return Status(ErrorCode::internal, "own file does not read back: " + s.to_string());
-  e.toc = reader.toc();
+  auto file = format::serialize_with_toc(c, {o.effort});
+  if (!file.ok()) return file.status();
+  e.bytes = std::move(file.value().bytes);
+  e.toc = std::move(file.value().toc);
   e.seconds.serialize = since(t);
   return e;
 }

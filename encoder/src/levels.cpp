@@ -2,36 +2,71 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
+#include <mutex>
 
 #include "dbss/decoder/level_refiner.h"
+#include "dbss/encoder/quantize.h"
 #include "dbss/encoder/sampling.h"
 #include "dbss/format/writer.h"
 
 namespace dbss {
 
-Result<size_t> choose_coding(format::Level& level, int zstd_level) {
-  size_t best = SIZE_MAX;
+namespace {
+
+// The sampler's scratch space, one per thread sampling at once.  The
+// refiner calls the chooser from its own threads without saying which, so
+// each call borrows a free one and gives it back (a lock per sample, against
+// microseconds of sampling); they live as long as the encoding.
+class ScratchPool {
+ public:
+  SampleScratch& take() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (free_.empty()) return *all_.emplace_back(std::make_unique<SampleScratch>());
+    SampleScratch& s = *free_.back();
+    free_.pop_back();
+    return s;
+  }
+  void give(SampleScratch& s) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    free_.push_back(&s);
+  }
+
+ private:
+  std::mutex mutex_;
+  std::vector<std::unique_ptr<SampleScratch>> all_;
+  std::vector<SampleScratch*> free_;
+};
+
+}  // namespace
+
+Result<std::vector<uint8_t>> choose_coding(format::Level& level, int zstd_level) {
+  std::vector<uint8_t> best;
   format::DisplacementCoding best_coding = level.coding;
+  bool first = true;
   for (auto coding : {format::DisplacementCoding::byte_planes, format::DisplacementCoding::varint}) {
     level.coding = coding;
     auto data = format::encode_level(level, zstd_level);
     if (!data.ok()) return data.status();
-    if (data.value().size() < best) best = data.value().size(), best_coding = coding;
+    // A tie keeps the first layout.
+    if (first || data.value().size() < best.size()) best = std::move(data).value(), best_coding = coding;
+    first = false;
   }
   level.coding = best_coding;
   return best;
 }
 
-Result<EncodedLevels> encode_levels(const TriangleMesh& control, const PointIndex& points, double diagonal,
+Result<EncodedLevels> encode_levels(const TriangleMesh& control, const PointIndex& points,
                                     const LevelEncodeOptions& o) {
-  if (!(o.error > 0) || !(diagonal > 0)) return Status(ErrorCode::invalid_argument, "error and diagonal must be positive");
+  const float step = o.step;
+  if (!(step > 0) || !std::isfinite(step)) return Status(ErrorCode::invalid_argument, "the step must be finite and positive");
   auto refiner = LevelRefiner::create(control);
   if (!refiner.ok()) return refiner.status();
   LevelRefiner& r = refiner.value();
   EncodedLevels out;
+  ScratchPool scratch;
   out.positions.push_back(control.positions);
   out.triangles.push_back(control.triangles);
-  const float step = static_cast<float>(2 * o.error * diagonal);
   for (uint32_t l = 1; l <= o.levels; ++l) {
     if (o.on_level) o.on_level(l);
     // Per odd vertex, written by whichever thread samples it, summed after.
@@ -45,15 +80,15 @@ Result<EncodedLevels> encode_levels(const TriangleMesh& control, const PointInde
     const OddChooser choose = [&](uint32_t e, const double p[3], const double n[3], const float* a, const float* b) {
       if (n[0] == 0 && n[1] == 0 && n[2] == 0) return int32_t{0};  // degenerate: the decoder will not move it
       const double len = std::sqrt(std::pow(a[0] - b[0], 2.0) + std::pow(a[1] - b[1], 2.0) + std::pow(a[2] - b[2], 2.0));
-      const Sample s = sample_displacement(points, p, n, 0.5 * len, 0.5 * len);
-      const double q = std::nearbyint(s.distance / step);
-      const double limit = format::kMaxAbsDisplacement;
+      SampleScratch& mine = scratch.take();
+      const Sample s = sample_displacement(points, p, n, 0.5 * len, 0.5 * len, mine);
+      scratch.give(mine);
+      const Quantized q = quantize(s.distance, step);
       source[e] = static_cast<uint8_t>(s.source);
-      // The format's range caps q too (only with steps far below the
-      // geometry's scale); counted with the sampler's clamps.
-      clamped[e] = s.clamped || std::abs(q) > limit;
+      // The format's range caps q too; counted with the sampler's clamps.
+      clamped[e] = s.clamped || q.clamped;
       magnitude[e] = std::abs(s.distance);
-      return static_cast<int32_t>(std::clamp(q, -limit, limit));
+      return q.q;
     };
     format::Level level;
     level.index = static_cast<uint8_t>(l);
@@ -74,10 +109,11 @@ Result<EncodedLevels> encode_levels(const TriangleMesh& control, const PointInde
     }
     st.mean_abs_displacement = odd ? sum_abs / odd : 0;
 
-    auto bytes = choose_coding(level, o.zstd_level);
-    if (!bytes.ok()) return bytes.status();
-    st.bytes = bytes.value();
+    auto chunk = choose_coding(level, o.zstd_level);
+    if (!chunk.ok()) return chunk.status();
+    st.bytes = chunk.value().size();
     st.coding = level.coding;
+    out.chunks.push_back(std::move(chunk).value());
 
     out.positions.emplace_back(r.positions().begin(), r.positions().end());
     out.triangles.emplace_back(r.triangles().begin(), r.triangles().end());

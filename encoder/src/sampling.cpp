@@ -29,27 +29,31 @@ bool line_hits(const V& p, const V& n, const V& a, const V& b, const V& c, doubl
 }
 }  // namespace
 
-Sample sample_displacement(const PointIndex& index, const double pd[3], const double nd[3], double radius,
+Sample sample_displacement(const PointIndex& index, const double p[3], const double n[3], double radius,
                            double half_length) {
+  SampleScratch scratch;
+  return sample_displacement(index, p, n, radius, half_length, scratch);
+}
+
+Sample sample_displacement(const PointIndex& index, const double pd[3], const double nd[3], double radius,
+                           double half_length, SampleScratch& scratch) {
   const PointCloud& pc = index.points();
   const V p(pd[0], pd[1], pd[2]), n(nd[0], nd[1], nd[2]);
+  const auto point = [&](uint32_t i) { return V(pc.xyz[3 * i], pc.xyz[3 * i + 1], pc.xyz[3 * i + 2]); };
   Sample out;
   // Points inside the cylinder: horizontal distance to the line under
   // `radius`, vertical offset along it under `half_length`.
-  thread_local std::vector<uint32_t> near;
+  std::vector<uint32_t>& near = scratch.near;
   const float q[3] = {static_cast<float>(pd[0]), static_cast<float>(pd[1]), static_cast<float>(pd[2])};
   index.within(q, static_cast<float>(std::sqrt(radius * radius + half_length * half_length)), near);
-  struct Cand {
-    double horizontal, vertical;
-    V x;
-  };
-  thread_local std::vector<Cand> cyl;
+  using Cand = SampleScratch::Candidate;
+  std::vector<Cand>& cyl = scratch.cylinder;
   cyl.clear();
   for (uint32_t i : near) {
-    const V x(pc.xyz[3 * i], pc.xyz[3 * i + 1], pc.xyz[3 * i + 2]);
+    const V x = point(i);
     const double t = (x - p).dot(n);
     const double h = (x - p - t * n).norm();
-    if (h < radius && std::abs(t) < half_length) cyl.push_back({h, t, x});
+    if (h < radius && std::abs(t) < half_length) cyl.push_back({h, t, i});
   }
   auto finish = [&](double d, SampleSource src) {
     out.source = src;
@@ -69,16 +73,17 @@ Sample sample_displacement(const PointIndex& index, const double pd[3], const do
       for (size_t j = i + 1; j < m; ++j)
         for (size_t k = j + 1; k < m; ++k) {
           double t;
-          if (line_hits(p, n, cyl[i].x, cyl[j].x, cyl[k].x, t) && std::abs(t) < half_length && (!hit || std::abs(t) < std::abs(best)))
+          if (line_hits(p, n, point(cyl[i].point), point(cyl[j].point), point(cyl[k].point), t) &&
+              std::abs(t) < half_length && (!hit || std::abs(t) < std::abs(best)))
             best = t, hit = true;
         }
     if (hit) return finish(best, SampleSource::triangle);
     // Plane through the cylinder's points.
     V c = V::Zero();
-    for (const Cand& x : cyl) c += x.x;
+    for (const Cand& x : cyl) c += point(x.point);
     c /= static_cast<double>(cyl.size());
     Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
-    for (const Cand& x : cyl) cov += (x.x - c) * (x.x - c).transpose();
+    for (const Cand& x : cyl) cov += (point(x.point) - c) * (point(x.point) - c).transpose();
     const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
     const V m3 = eig.eigenvectors().col(0);
     const double nm = n.dot(m3);

@@ -2,6 +2,7 @@
 
 #include <zstd.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "byte_io.h"
@@ -11,6 +12,19 @@
 namespace dbss::format {
 
 using namespace detail;
+
+namespace {
+
+// The fields a LEVL chunk's data begins with, before the payload's size.
+void put_level_fields(std::vector<uint8_t>& d, const Level& level) {
+  put_u8(d, level.index);
+  put_u8(d, static_cast<uint8_t>(level.coding));
+  put_u16(d, 0);
+  put_u32(d, static_cast<uint32_t>(level.q.size()));
+  put_f32(d, level.step);
+}
+
+}  // namespace
 
 std::vector<uint8_t> encode_header(const Header& h) {
   std::vector<uint8_t> d;
@@ -46,11 +60,7 @@ Result<std::vector<uint8_t>> encode_level(const Level& level, int zstd_level) {
 
   const std::vector<uint8_t> raw = pack_displacements(level.q, level.coding);
   std::vector<uint8_t> d;
-  put_u8(d, level.index);
-  put_u8(d, static_cast<uint8_t>(level.coding));
-  put_u16(d, 0);
-  put_u32(d, static_cast<uint32_t>(level.q.size()));
-  put_f32(d, level.step);
+  put_level_fields(d, level);
   put_u32(d, static_cast<uint32_t>(raw.size()));
   const size_t head = d.size();
   d.resize(head + ZSTD_compressBound(raw.size()));
@@ -96,9 +106,9 @@ void put_chunk(std::vector<uint8_t>& out, ChunkType type, std::span<const uint8_
   put_u32(out, crc);
 }
 
-}  // namespace
-
-std::vector<uint8_t> assemble(std::span<const uint8_t> head_data, std::span<const RawChunk> body) {
+// assemble(), also listing the table of contents in `listed` when not null.
+std::vector<uint8_t> assemble_file(std::span<const uint8_t> head_data, std::span<const RawChunk> body,
+                                   std::vector<TocEntry>* listed) {
   const uint64_t toc_data = 16 + 16 * uint64_t{body.size()};
   const uint64_t body_start = kSignature.size() + kChunkOverhead + head_data.size() + kChunkOverhead + toc_data;
   uint64_t end = body_start;
@@ -113,6 +123,7 @@ std::vector<uint8_t> assemble(std::span<const uint8_t> head_data, std::span<cons
     put_bytes(toc, c.type.c.data(), 4);
     put_u32(toc, static_cast<uint32_t>(c.data.size()));
     put_u64(toc, at);
+    if (listed) listed->push_back({c.type, static_cast<uint32_t>(c.data.size()), at});
     at += kChunkOverhead + c.data.size();
   }
 
@@ -125,7 +136,19 @@ std::vector<uint8_t> assemble(std::span<const uint8_t> head_data, std::span<cons
   return out;
 }
 
+}  // namespace
+
+std::vector<uint8_t> assemble(std::span<const uint8_t> head_data, std::span<const RawChunk> body) {
+  return assemble_file(head_data, body, nullptr);
+}
+
 Result<std::vector<uint8_t>> serialize(const FileContents& c, const WriteOptions& options) {
+  auto file = serialize_with_toc(c, options);
+  if (!file.ok()) return file.status();
+  return std::move(file.value().bytes);
+}
+
+Result<SerializedFile> serialize_with_toc(const FileContents& c, const WriteOptions& options) {
   auto bad = [](const std::string& what) { return Status(ErrorCode::invalid_argument, what); };
   if (Status s = check_header(c.header, Status::kNoOffset); !s.ok())
     return Status(ErrorCode::invalid_argument, s.message());
@@ -140,6 +163,10 @@ Result<std::vector<uint8_t>> serialize(const FileContents& c, const WriteOptions
   if (Status s = derived_odd_counts(c.header, Status::kNoOffset, odd); !s.ok())
     return Status(ErrorCode::invalid_argument, s.message());
 
+  if (!c.level_data.empty() && c.level_data.size() != c.levels.size())
+    return bad(std::to_string(c.level_data.size()) + " levels' chunk data for " + std::to_string(c.levels.size()) +
+               " levels");
+
   std::vector<RawChunk> body;
   body.push_back({kCtrl, encode_control(c.control_codec, c.control_mesh)});
   for (size_t i = 0; i < c.levels.size(); ++i) {
@@ -148,6 +175,17 @@ Result<std::vector<uint8_t>> serialize(const FileContents& c, const WriteOptions
     if (level.q.size() != odd[i])
       return bad("level " + std::to_string(i + 1) + " has " + std::to_string(level.q.size()) +
                  " displacements; its odd-vertex count is " + std::to_string(odd[i]));
+    if (!c.level_data.empty()) {
+      // Made by encode_level, which checked the level: only that the data
+      // is this level's is checked here.
+      const std::vector<uint8_t>& data = c.level_data[i];
+      std::vector<uint8_t> fields;
+      put_level_fields(fields, level);
+      if (data.size() < fields.size() + 4 || !std::equal(fields.begin(), fields.end(), data.begin()))
+        return bad("the chunk data given for level " + std::to_string(i + 1) + " is not that level's");
+      body.push_back({kLevl, data});
+      continue;
+    }
     auto data = encode_level(level, options.zstd_level);
     if (!data.ok()) return data.status();
     body.push_back({kLevl, std::move(data).value()});
@@ -159,7 +197,9 @@ Result<std::vector<uint8_t>> serialize(const FileContents& c, const WriteOptions
   }
   for (const RawChunk& r : body)
     if (r.data.size() > 0xFFFFFFFFu) return bad("a chunk is over 4 GiB");
-  return assemble(encode_header(c.header), body);
+  SerializedFile file;
+  file.bytes = assemble_file(encode_header(c.header), body, &file.toc);
+  return file;
 }
 
 }  // namespace dbss::format

@@ -31,7 +31,7 @@ Result<Comparison> compare_representations(const PointCloud& points, const Encod
   if (e.points.size() != points.size()) cleaned = std::make_unique<PointIndex>(e.points);
   const PointIndex& index = cleaned ? *cleaned : input_index;
   const uint32_t levels = static_cast<uint32_t>(e.levels.levels.size());
-  const float step = levels ? e.levels.levels[0].step : 0.0f;
+  const float step = e.step;  // the step dbss's levels used
   std::vector<DssLevel> dss;
   if (levels) {
     if (o.on_progress) o.on_progress("full-vertex DSS baseline");

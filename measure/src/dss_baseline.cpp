@@ -8,6 +8,7 @@
 #include "dbss/measure/loop_subdivision.h"
 #include "dbss/encoder/mesh_adjacency.h"
 #include "dbss/encoder/point_index.h"
+#include "dbss/encoder/quantize.h"
 #include "dbss/encoder/sampling.h"
 #include "dbss/format/container.h"
 
@@ -30,6 +31,7 @@ Result<std::vector<DssLevel>> encode_dss_baseline(const TriangleMesh& control, c
   // whole spacing made the kitten worse).  dbss keeps its narrow cylinders:
   // its short displacements measure better with them.
   const double min_radius = 0.5 * point_spacing(points, 1, 0.5);
+  SampleScratch scratch;
   for (uint32_t l = 1; l <= o.levels; ++l) {
     std::vector<float> next;
     loop_subdivide(t, domain, next);
@@ -64,17 +66,15 @@ Result<std::vector<DssLevel>> encode_dss_baseline(const TriangleMesh& control, c
       const double len = edge_n[v] ? edge_sum[v] / edge_n[v] : 0;
       const double p[3] = {domain[3 * size_t{v}], domain[3 * size_t{v} + 1], domain[3 * size_t{v} + 2]};
       const Sample s =
-          sample_displacement(points, p, n, std::max(len, min_radius), 0.5 * std::ldexp(len, static_cast<int>(l)));
+          sample_displacement(points, p, n, std::max(len, min_radius), 0.5 * std::ldexp(len, static_cast<int>(l)), scratch);
       d.clamped += s.clamped;
-      const double q = std::clamp(std::nearbyint(s.distance / o.step), double(-format::kMaxAbsDisplacement),
-                                  double(format::kMaxAbsDisplacement));
-      level.q[v] = static_cast<int32_t>(q);
-      const float dq = static_cast<float>(q) * o.step;
+      level.q[v] = quantize(s.distance, o.step).q;  // dbss's quantizer
+      const float dq = static_cast<float>(level.q[v]) * o.step;
       for (int a = 0; a < 3; ++a) d.mesh.positions[3 * size_t{v} + a] = static_cast<float>(p[a] + dq * n[a]);
     }
-    auto bytes = choose_coding(level, o.zstd_level);  // the same coding choice as dbss's levels
-    if (!bytes.ok()) return bytes.status();
-    d.bytes = bytes.value() + format::kChunkOverhead;
+    auto chunk = choose_coding(level, o.zstd_level);  // the same coding choice as dbss's levels
+    if (!chunk.ok()) return chunk.status();
+    d.bytes = chunk.value().size() + format::kChunkOverhead;
     out.push_back(std::move(d));
   }
   return out;

@@ -6,6 +6,7 @@
 #include "dbss/decoder/progressive.h"
 #include "dbss/format/reader.h"
 #include "file_builder.h"
+#include "kernel_choice.h"
 #include "reference.h"
 
 using namespace dbss;
@@ -111,6 +112,7 @@ TEST_CASE("progressive decoder equals the reference decoder bit for bit on 1 to 
     for (unsigned threads : {1u, 2u, 3u}) {
       DecoderOptions o;
       o.threads = threads;
+      o.kernels = test::kernels_under_test();
       ProgressiveDecoder d(o);
       REQUIRE(d.feed(file).ok());
       for (uint32_t l : {static_cast<uint32_t>(levels), 1u, 2u, 3u, static_cast<uint32_t>(levels)}) {

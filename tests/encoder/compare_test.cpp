@@ -193,7 +193,8 @@ TEST_CASE("sample counts: dbss stores E_(l-1) per level, the full-vertex DSS V_l
     const PointIndex index(pc);
     LevelEncodeOptions lo;
     lo.levels = 3;
-    auto dbss_levels = encode_levels(m, index, 4.0, lo);
+    lo.step = quantization_step(1e-4, 4.0);
+    auto dbss_levels = encode_levels(m, index, lo);
     REQUIRE(dbss_levels.ok());
     auto dss = encode_dss_baseline(m, index, {3, dbss_levels.value().levels[0].step, 3});
     REQUIRE(dss.ok());

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <iterator>
 #include <string>
+#include <utility>
 
 #include "../sampled_shapes.h"
 #include "dbss/decoder/control_mesh.h"
@@ -14,6 +15,7 @@
 #include "dbss/encoder/levels.h"
 #include "dbss/measure/surface_distance.h"
 #include "dbss/encoder/point_distances.h"
+#include "dbss/format/reader.h"
 #include "dbss/format/writer.h"
 
 using namespace dbss;
@@ -77,8 +79,8 @@ TEST_CASE("closed loop: the decoder reproduces the encoder's levels bit for bit,
     const double diagonal = std::sqrt(3.0) * (s.hi - s.lo);
     LevelEncodeOptions o;
     o.levels = 3;
-    o.error = 1e-4;
-    auto enc = encode_levels(control.value(), index, diagonal, o);
+    o.step = quantization_step(1e-4, diagonal);
+    auto enc = encode_levels(control.value(), index, o);
     REQUIRE(enc.ok());
 
     format::FileContents c;
@@ -94,6 +96,16 @@ TEST_CASE("closed loop: the decoder reproduces the encoder's levels bit for bit,
     c.levels = enc.value().levels;
     auto file = format::serialize(c);
     REQUIRE(file.ok());
+    // The bytes choose_coding kept make the same file as compressing each
+    // level again, and the writer's table of contents is the one a reader
+    // finds in it.
+    c.level_data = enc.value().chunks;
+    auto reused = format::serialize_with_toc(c);
+    REQUIRE(reused.ok());
+    CHECK(reused.value().bytes == file.value());
+    CHECK(reused.value().toc == format::read_all(file.value()).toc());
+    std::swap(c.level_data[0], c.level_data[1]);  // another level's data is refused
+    CHECK(format::serialize(c).status().code() == ErrorCode::invalid_argument);
 
     ProgressiveDecoder d;
     REQUIRE(d.feed(file.value()).ok());
@@ -139,6 +151,10 @@ TEST_CASE("error bounds on every test shape: smooth shapes get closer level by l
     o.levels = 3;
     auto e = encode_points(pc, o);
     REQUIRE(e.ok());
+    // The table of contents the writer reported is the file's, and every
+    // level used the one step encode_points resolved.
+    CHECK(e.value().toc == format::read_all(e.value().bytes).toc());
+    for (const format::Level& level : e.value().levels.levels) CHECK(level.step == e.value().step);
     const PointIndex index(pc);
     const bool creased = std::string(s.name) == "cup (U shape)" || std::string(s.name) == "thin plate";
     double prev = 1;

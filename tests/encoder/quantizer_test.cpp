@@ -96,8 +96,8 @@ TEST_CASE("quantizer on a plane: every odd vertex gets the nearest integer to it
   const PointIndex index(pc);
   LevelEncodeOptions o;
   o.levels = 3;
-  o.error = step / 2;  // step = 2 * error * diagonal
-  auto enc = encode_levels(control, index, 1.0, o);
+  o.step = static_cast<float>(step);
+  auto enc = encode_levels(control, index, o);
   REQUIRE(enc.ok());
   REQUIRE(enc.value().levels[0].step == static_cast<float>(step));
   const auto samples = check_quantization(enc.value(), index);
@@ -127,9 +127,9 @@ TEST_CASE("quantizer and sampler on a sphere: samples match the exact distance a
   const PointIndex index(pc);
   LevelEncodeOptions o;
   o.levels = 3;
-  o.error = 2e-4;
   const double diagonal = 2 * R * std::sqrt(3.0);
-  auto enc = encode_levels(control, index, diagonal, o);
+  o.step = quantization_step(2e-4, diagonal);
+  auto enc = encode_levels(control, index, o);
   REQUIRE(enc.ok());
   const double step = enc.value().levels[0].step;
   const auto samples = check_quantization(enc.value(), index);

@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "dbss/decoder/butterfly_weight.h"
 #include "dbss/decoder/topology.h"
 
 namespace dbss {
@@ -30,11 +31,6 @@ struct Stencils {
   std::vector<double> other_weight;
   uint32_t size() const noexcept { return odd_count; }
 };
-
-// s_j of the extraordinary rule for valence k in 3..kMaxValence, j in 0..k-1:
-// the binary64 value nearest to (1/4 + cos(2πj/k) + cos(4πj/k)/2) / k
-// (k = 3: 5/12, -1/12, -1/12; k = 4: 3/8, 0, -1/8, 0).
-double butterfly_weight(uint32_t k, uint32_t j) noexcept;
 
 // The stencil of every edge of `t`.  With `all_generic`, regular edges are
 // stored as weighted lists too (for tests: both forms must agree bit for bit).

@@ -7,29 +7,25 @@
 #pragma once
 
 #include <cstdint>
-#include <functional>
 #include <memory>
 #include <span>
 #include <vector>
 
+#include "dbss/decoder/kernels.h"
 #include "dbss/decoder/mesh.h"
+#include "dbss/decoder/odd_chooser.h"
 #include "dbss/format/status.h"
 
 namespace dbss {
 
-// Chooses odd vertex `odd`'s integer q: `point` is its undisplaced stencil
-// point and `normal` its unit normal (zero when degenerate), both in
-// binary64 as the decoder holds them; u and w are its edge's two ends in
-// the level being refined (3 floats each).  Called from several threads at
-// once for different odd vertices, so it must be safe to call concurrently;
-// the vertex then moves by q * step along the normal.
-using OddChooser = std::function<int32_t(uint32_t odd, const double point[3], const double normal[3],
-                                         const float* u, const float* w)>;
+struct LevelRefinerOptions {
+  Kernels kernels = Kernels::best;  // the same bits either way
+};
 
 class LevelRefiner {
  public:
   // Fails with bad_mesh as build_topology() does.
-  static Result<LevelRefiner> create(const TriangleMesh& control);
+  static Result<LevelRefiner> create(const TriangleMesh& control, const LevelRefinerOptions& options = {});
   ~LevelRefiner();
   LevelRefiner(LevelRefiner&&) noexcept;
   LevelRefiner& operator=(LevelRefiner&&) noexcept;

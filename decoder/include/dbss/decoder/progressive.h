@@ -16,6 +16,7 @@
 #include <span>
 #include <vector>
 
+#include "dbss/decoder/kernels.h"
 #include "dbss/decoder/mesh.h"
 #include "dbss/decoder/topology.h"
 #include "dbss/format/reader.h"
@@ -33,6 +34,8 @@ struct DecoderOptions {
   // Off: only the control mesh and the current level are kept, and a coarser
   // level is recomputed from the control mesh.
   bool keep_levels = false;
+  // Which build of the inner loops runs; the output is the same for any value.
+  Kernels kernels = Kernels::best;
 };
 
 // A decoded level; the spans point into the decoder and stay valid until the

@@ -53,6 +53,7 @@ struct Encoding {
   ScanCheck check;                // the result against the points (warnings recorded in `meta`)
   EncodedLevels levels;           // per level: reconstruction (bit-identical to the decoder's) and stats
   double diagonal = 0;            // of the points' bounding box, model units
+  float step = 0;                 // the quantization step of every level, model units (`step` or from `error`)
   double error = 0;               // the error target actually used (from `step` when given)
   EncodeTimes seconds;
 };

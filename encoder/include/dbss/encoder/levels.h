@@ -10,6 +10,7 @@
 
 #include "dbss/decoder/mesh.h"
 #include "dbss/encoder/point_index.h"
+#include "dbss/encoder/quantize.h"
 #include "dbss/format/container.h"
 #include "dbss/format/status.h"
 
@@ -17,10 +18,10 @@ namespace dbss {
 
 struct LevelEncodeOptions {
   uint32_t levels = 3;
-  // Largest quantization error relative to the bounding-box diagonal: the
-  // step is 2 * error * diagonal, so rounding moves a vertex at most
-  // error * diagonal.
-  double error = 1e-4;
+  // Quantization step of every level, model units, > 0: rounding moves a
+  // vertex at most step / 2 (quantization_step() makes it from an error
+  // relative to the diagonal).
+  float step = 0;
   int zstd_level = 19;
   unsigned threads = 1;
   std::function<void(uint32_t level)> on_level;  // called as each level starts; may be empty
@@ -38,18 +39,21 @@ struct LevelStats {
 
 struct EncodedLevels {
   std::vector<format::Level> levels;
+  // chunks[i]: the LEVL chunk data of levels[i] as choose_coding compressed
+  // it, for the writer to reuse (format::FileContents::level_data).
+  std::vector<std::vector<uint8_t>> chunks;
   std::vector<LevelStats> stats;
   std::vector<std::vector<float>> positions;  // positions[l]: the reconstruction of level l (0 = control)
   std::vector<std::vector<uint32_t>> triangles;
 };
 
 // Sets level.coding to the payload layout that makes the smaller LEVL chunk
-// data and returns that size in bytes (both layouts are tried).
-Result<size_t> choose_coding(format::Level& level, int zstd_level);
+// data and returns that data (both layouts are compressed; the smaller one's
+// bytes are kept so nobody compresses the level again).
+Result<std::vector<uint8_t>> choose_coding(format::Level& level, int zstd_level);
 
-// `control` must be the Draco-decoded control mesh.  `diagonal` is the
-// bounding-box diagonal the error is relative to.
-Result<EncodedLevels> encode_levels(const TriangleMesh& control, const PointIndex& points, double diagonal,
-                                    const LevelEncodeOptions& options = {});
+// `control` must be the Draco-decoded control mesh.
+Result<EncodedLevels> encode_levels(const TriangleMesh& control, const PointIndex& points,
+                                    const LevelEncodeOptions& options);
 
 }  // namespace dbss

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <vector>
 
 #include "dbss/encoder/point_index.h"
 
@@ -20,9 +21,25 @@ struct Sample {
   bool clamped = false;  // |distance| was cut to the limit
 };
 
+// Working memory of sample_displacement(), owned by the caller so that a
+// loop of samples allocates once: one per thread sampling at the same time.
+// Nothing in it carries from one call to the next.
+struct SampleScratch {
+  struct Candidate {
+    double horizontal, vertical;  // distance from the line, offset along it
+    uint32_t point;               // index into the points
+  };
+  std::vector<uint32_t> near;          // points in the cylinder's bounding ball
+  std::vector<Candidate> cylinder;     // those inside the cylinder
+};
+
 // p: the odd vertex; n: its unit normal (the decoder's); radius: the
 // cylinder's horizontal threshold; half_length: its vertical threshold; the
 // result is clamped to |distance| <= half_length.
+Sample sample_displacement(const PointIndex& points, const double p[3], const double n[3], double radius,
+                           double half_length, SampleScratch& scratch);
+// The same with scratch space of its own (allocated per call): for single
+// samples and tests.
 Sample sample_displacement(const PointIndex& points, const double p[3], const double n[3], double radius,
                            double half_length);
 

@@ -23,8 +23,14 @@ inline constexpr uint16_t kVersionMinor = 0;
 inline constexpr uint32_t kHeadSize = 56;
 // Length, type and CRC around every chunk's data.
 inline constexpr uint32_t kChunkOverhead = 12;
-// The format's own ceiling on levels; readers may set a lower limit.
+// The format's own ceiling on levels: a file declaring more is invalid.
 inline constexpr uint32_t kMaxLevelsInFormat = 30;
+// The practical limit on levels: what `dbss encode --levels` and `dbss
+// decode --level` accept and what a Reader accepts by default
+// (Limits::max_levels).  Each level quadruples the triangles: 8 levels over
+// the smallest default control mesh (96 triangles) make 6.3 million, and a
+// viewer reaches its memory long before 30.
+inline constexpr uint32_t kMaxLevelsInPractice = 8;
 // Stored displacement integers satisfy |q| <= kMaxAbsDisplacement so that
 // every q converts to binary32 exactly.
 inline constexpr int32_t kMaxAbsDisplacement = 1 << 24;

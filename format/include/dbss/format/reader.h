@@ -31,7 +31,7 @@ namespace dbss::format {
 
 struct Limits {
   uint64_t max_file_size = uint64_t{1} << 32;     // bytes, as declared by the table of contents
-  uint32_t max_levels = 10;                       // LEVL chunks
+  uint32_t max_levels = kMaxLevelsInPractice;     // LEVL chunks
   uint64_t max_vertices = uint64_t{1} << 26;      // vertices of the finest level
   uint32_t max_chunks = 4096;                     // entries in the table of contents
   uint32_t max_ancillary_bytes = 16u << 20;       // data bytes of any one ancillary chunk

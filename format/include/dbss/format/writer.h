@@ -1,7 +1,8 @@
 // Writing .dbss containers.
 //
-// serialize() builds a whole file in memory; write_file_atomic() puts bytes
-// under a path without ever leaving a partial file under that name.
+// serialize() builds a whole file in memory; dbss::io::write_file_atomic()
+// (dbss/io/file.h) puts bytes under a path without ever leaving a partial
+// file under that name.
 #pragma once
 
 #include <cstdint>
@@ -21,6 +22,10 @@ struct FileContents {
   ControlCodec control_codec = ControlCodec::draco;
   std::vector<uint8_t> control_mesh;  // the codec's bytes, not empty
   std::vector<Level> levels;          // levels[i].index == i + 1
+  // Optional: empty, or levels[i]'s LEVL chunk data as encode_level made it
+  // (an encoder that compressed each level to choose its coding keeps those
+  // bytes, and serialize() writes them instead of compressing again).
+  std::vector<std::vector<uint8_t>> level_data;
   std::vector<MetaEntry> metadata;    // one 'meta' chunk after the last level when not empty
 };
 
@@ -56,5 +61,15 @@ std::vector<uint8_t> assemble(std::span<const uint8_t> head_data, std::span<cons
 // (including that each level has the odd-vertex count the control counts
 // imply) and returns invalid_argument naming the first problem.
 Result<std::vector<uint8_t>> serialize(const FileContents& contents, const WriteOptions& options = {});
+
+// A file and the table of contents its INDX chunk lists (the chunks after
+// INDX, in file order: what Reader::toc() reads back).
+struct SerializedFile {
+  std::vector<uint8_t> bytes;
+  std::vector<TocEntry> toc;
+};
+
+// serialize(), also returning the table of contents it wrote.
+Result<SerializedFile> serialize_with_toc(const FileContents& contents, const WriteOptions& options = {});
 
 }  // namespace dbss::format

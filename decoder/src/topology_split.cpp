@@ -1,3 +1,4 @@
+// Topology split: one level's connectivity from the level below (no geometry).
 // Child connectivity from the parent's regular 1-to-4 split, without any
 // search: every child entry is a function of a few parent entries, so the
 // work splits over contiguous face ranges (spec/decoding.md section 4).

@@ -14,13 +14,16 @@
 
 #include "buffer.h"
 #include "parallel.h"
-#include "dbss/decoder/level_refiner.h"
+#include "dbss/decoder/kernels.h"
+#include "dbss/decoder/odd_chooser.h"
+#include "odd_vertices.h"
 #include "topology_ref.h"
 
 namespace dbss::detail {
 
 class Refiner {
  public:
+  explicit Refiner(Kernels kernels = Kernels::best) : kernels_(select_kernels(kernels)) {}
   // Starts over at level 0.  `base` must outlive the Refiner's use.
   void reset(const LevelTopology& base, std::span<const float> base_positions);
   // Forgets everything but keeps the arrays' storage for the next stream
@@ -66,6 +69,7 @@ class Refiner {
     workers_->run(n, threads, fn);
   }
 
+  OddVertexKernels kernels_;  // chosen once, for every step
   std::unique_ptr<Workers> workers_;  // made on first use; a pointer keeps Refiner movable
   BlockPool pool_;  // the last stream's storage, after recycle()
   const LevelTopology* base_ = nullptr;

@@ -1,4 +1,5 @@
-#include "refiner.h"
+// Refinement step (detail::Refiner): one level to the next on reused buffers, for both decoders.
+#include "refinement_step.h"
 
 #include <cstring>
 #include <utility>
@@ -133,15 +134,15 @@ void Refiner::step_impl(const int32_t* q, const OddChooser* choose, int32_t* cho
   float* per_half = moves ? triangles_.reuse_as<float>(9 * size_t{t.face_count} + 1) : nullptr;
   if (per_half) per_half[9 * size_t{t.face_count}] = 0;  // slack (inside the 12 per face)
   parallel(t.face_count, threads, [&](uint32_t fb, uint32_t fe) {
-    stencil_points(t, p, fb, fe, per_half ? nullptr : out_odd, per_half);
+    kernels_.stencil_points(t, p, fb, fe, per_half ? nullptr : out_odd, per_half);
     const size_t vb = size_t{evens} * fb / t.face_count, ve = size_t{evens} * fe / t.face_count;
     std::memcpy(out + 3 * vb, p + 3 * vb, sizeof(float) * 3 * (ve - vb));
   });
   // Pass 2: normals from the undisplaced level, and the displacements.
   if (per_half)
     parallel(t.face_count, threads, [&](uint32_t fb, uint32_t fe) {
-      if (choose) displaced_points_chosen(t, p, per_half, *choose, chosen, step, fb, fe, out_odd);
-      else displaced_points(t, p, per_half, q, step, fb, fe, out_odd);
+      if (choose) kernels_.displaced_points_chosen(t, p, per_half, *choose, chosen, step, fb, fe, out_odd);
+      else kernels_.displaced_points(t, p, per_half, q, step, fb, fe, out_odd);
     });
   // Pass 3: the next level's triangles, over the stencil points.
   uint32_t* tri = triangles_.reuse_as<uint32_t>(12 * size_t{t.face_count});

@@ -1,0 +1,19 @@
+// The decoder kernels a test asks for: Kernels::baseline when the
+// environment has DBSS_BASELINE_KERNELS (one CTest entry sets it to rerun
+// the bit-exactness tests on the portable build), else the best the
+// processor runs.  Read here, at the test level, as a tool would: the
+// decoder itself only takes the option.
+#pragma once
+
+#include <cstdlib>
+
+#include "dbss/decoder/kernels.h"
+
+namespace dbss::test {
+
+inline Kernels kernels_under_test() {
+  static const Kernels k = std::getenv("DBSS_BASELINE_KERNELS") ? Kernels::baseline : Kernels::best;
+  return k;
+}
+
+}  // namespace dbss::test
