@@ -1,4 +1,4 @@
-#include "dbss/decoder/butterfly.h"
+#include "butterfly.h"
 
 #include "butterfly_terms.h"
 

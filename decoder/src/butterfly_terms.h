@@ -3,7 +3,7 @@
 // (build_stencils) and to evaluate them on the fly (the progressive decoder).
 #pragma once
 
-#include "dbss/decoder/butterfly_weight.h"
+#include "butterfly_weight.h"
 #include "topology_ref.h"
 
 namespace dbss::detail {

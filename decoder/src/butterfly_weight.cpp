@@ -1,5 +1,5 @@
 // Butterfly weights: the table scripts/gen_butterfly_weights.py generated, looked up.
-#include "dbss/decoder/butterfly_weight.h"
+#include "butterfly_weight.h"
 
 #include "dbss/decoder/topology.h"  // kMaxValence
 

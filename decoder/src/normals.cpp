@@ -1,4 +1,4 @@
-#include "dbss/decoder/normals.h"
+#include "normals.h"
 
 #include <cmath>
 

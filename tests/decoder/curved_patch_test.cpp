@@ -10,7 +10,7 @@
 
 #include "../shapes.h"
 #include "dbss/decoder/level_refiner.h"
-#include "dbss/decoder/normals.h"
+#include "normals.h"
 #include "dbss/decoder/topology.h"
 #include "reference.h"
 

@@ -8,7 +8,7 @@
 #include <set>
 
 #include "../shapes.h"
-#include "dbss/decoder/butterfly.h"
+#include "butterfly.h"
 #include "dbss/decoder/level_refiner.h"
 #include "dbss/decoder/topology.h"
 #include "dbss/format/container.h"

@@ -12,7 +12,7 @@
 #include <sstream>
 #include <string>
 
-#include "dbss/decoder/butterfly.h"
+#include "butterfly.h"
 #include "dbss/decoder/progressive.h"
 #include "dbss/format/crc32c.h"
 #include "dbss/format/reader.h"

@@ -11,7 +11,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "dbss/decoder/butterfly_weight.h"
+#include "butterfly_weight.h"
 #include "dbss/decoder/topology.h"
 
 namespace dbss {
