@@ -48,18 +48,31 @@ inline std::vector<uint8_t> small_file() { return format::serialize(sample_conte
 // The paper's genus-1 counts (V 50, E 150, F 100) with 3 levels.
 inline std::vector<uint8_t> big_file() { return format::serialize(sample_contents(50, 150, 100, 3, 2)).value(); }
 
+// A sample file with the table of contents the writer says it wrote: the
+// expectations below come from the writer, not from the reader under test.
+struct SampleFile {
+  std::vector<uint8_t> bytes;
+  std::vector<format::TocEntry> toc;
+};
+inline SampleFile small_sample() {
+  auto f = format::serialize_with_toc(sample_contents(4, 6, 4, 3)).value();
+  return {std::move(f.bytes), std::move(f.toc)};
+}
+inline SampleFile big_sample() {
+  auto f = format::serialize_with_toc(sample_contents(50, 150, 100, 3, 2)).value();
+  return {std::move(f.bytes), std::move(f.toc)};
+}
+
 // Number of LEVL chunks that end within the first `n` bytes.
-inline uint32_t levels_within(const std::vector<uint8_t>& file, size_t n) {
-  const format::Reader r = format::read_all(file);
+inline uint32_t levels_within(const SampleFile& file, size_t n) {
   uint32_t count = 0;
-  for (const auto& e : r.toc())
+  for (const auto& e : file.toc)
     if (e.type == format::kLevl && e.end() <= n) ++count;
   return count;
 }
 
-inline bool ends_within(const std::vector<uint8_t>& file, format::ChunkType type, size_t n) {
-  const format::Reader r = format::read_all(file);
-  for (const auto& e : r.toc())
+inline bool ends_within(const SampleFile& file, format::ChunkType type, size_t n) {
+  for (const auto& e : file.toc)
     if (e.type == type) return e.end() <= n;
   return false;
 }

@@ -10,7 +10,8 @@ using namespace dbss::format;
 namespace {
 // Feeds `file` in pieces of `piece` bytes; after every piece, what is ready
 // must be exactly what the bytes so far contain.
-Reader feed_in_pieces(const std::vector<uint8_t>& file, size_t piece) {
+Reader feed_in_pieces(const test::SampleFile& sample, size_t piece) {
+  const std::vector<uint8_t>& file = sample.bytes;
   Reader r;
   uint32_t last_levels = 0;
   for (size_t at = 0; at < file.size(); at += piece) {
@@ -18,8 +19,8 @@ Reader feed_in_pieces(const std::vector<uint8_t>& file, size_t piece) {
     REQUIRE(r.feed(std::span<const uint8_t>(file.data() + at, n)).ok());
     REQUIRE(r.levels_ready() >= last_levels);
     last_levels = r.levels_ready();
-    REQUIRE(r.levels_ready() == test::levels_within(file, at + n));
-    REQUIRE(r.has_control() == test::ends_within(file, kCtrl, at + n));
+    REQUIRE(r.levels_ready() == test::levels_within(sample, at + n));
+    REQUIRE(r.has_control() == test::ends_within(sample, kCtrl, at + n));
     REQUIRE(r.offset() == at + n);
   }
   REQUIRE(r.finish().ok());
@@ -40,21 +41,24 @@ void check_equal(const Reader& a, const Reader& b) {
 }  // namespace
 
 TEST_CASE("every piece size from 1 byte to the whole file gives the same result") {
-  const auto file = test::small_file();
+  const auto sample = test::small_sample();
+  const auto& file = sample.bytes;
   const Reader whole = read_all(file);
   REQUIRE(whole.complete());
+  CHECK(whole.toc() == sample.toc);  // the reader finds what the writer wrote
   for (size_t piece = 1; piece <= file.size(); ++piece) {
     INFO("piece size " << piece);
-    check_equal(feed_in_pieces(file, piece), whole);
+    check_equal(feed_in_pieces(sample, piece), whole);
   }
 }
 
 TEST_CASE("a larger file in small, prime and random piece sizes") {
-  const auto file = test::big_file();
+  const auto sample = test::big_sample();
+  const auto& file = sample.bytes;
   const Reader whole = read_all(file);
   for (size_t piece : {1u, 2u, 3u, 7u, 13u, 64u, 251u, 1460u, 4096u}) {
     INFO("piece size " << piece);
-    check_equal(feed_in_pieces(file, piece), whole);
+    check_equal(feed_in_pieces(sample, piece), whole);
   }
   std::mt19937 rng(11);
   for (int round = 0; round < 20; ++round) {

@@ -6,7 +6,8 @@ using namespace dbss;
 using namespace dbss::format;
 
 TEST_CASE("a cut at every byte offset gives the complete levels so far and a truncated error") {
-  for (const auto& file : {test::small_file(), test::big_file()}) {
+  for (const auto& sample : {test::small_sample(), test::big_sample()}) {
+    const std::vector<uint8_t>& file = sample.bytes;
     for (size_t n = 0; n < file.size(); ++n) {
       INFO("prefix of " << n << " of " << file.size() << " bytes");
       Reader r;
@@ -15,8 +16,8 @@ TEST_CASE("a cut at every byte offset gives the complete levels so far and a tru
       REQUIRE(s.code() == ErrorCode::truncated);
       REQUIRE(s.offset() == n);
       REQUIRE(!s.message().empty());
-      REQUIRE(r.levels_ready() == test::levels_within(file, n));
-      REQUIRE(r.has_control() == test::ends_within(file, kCtrl, n));
+      REQUIRE(r.levels_ready() == test::levels_within(sample, n));
+      REQUIRE(r.has_control() == test::ends_within(sample, kCtrl, n));
       REQUIRE(r.has_header() == (n >= 8 + kChunkOverhead + kHeadSize));
       REQUIRE(!r.complete());
     }
