@@ -1,5 +1,5 @@
 # Runs the dbss command on good, damaged and missing files and checks exit
-# codes and messages.  Invoked by CTest with -DDBSS, -DEXAMPLE, -DWORK.
+# codes and messages.  Invoked by CTest with -DDBSS, -DEXAMPLE, -DMESH_HASH, -DWORK.
 file(REMOVE_RECURSE ${WORK})
 file(MAKE_DIRECTORY ${WORK})
 
@@ -219,3 +219,29 @@ set(garbage ${SOURCE}/tests/format/data/garbage-control.dbss)
 expect_run(1 "compression: control mesh" ${DBSS} info ${garbage})
 expect_run(1 "\"complete\": false" ${DBSS} info ${garbage} --json)
 expect_run(1 "compression: control mesh" ${DBSS} decode ${garbage} -o ${WORK}/g.ply)
+
+# `dbss decode` writes the decoded level itself: at every level of a golden
+# file, the positions read back from the written PLY, OBJ and OFF hash to the
+# level's recorded hash (binary32 survives PLY's bytes and the 9 significant
+# digits of OBJ and OFF exactly), with the level's vertex and triangle counts.
+set(golden ${SOURCE}/tests/golden/v1/bordered-grid-3-levels)
+file(STRINGS ${golden}.hashes recorded)
+execute_process(COMMAND ${DBSS} info --hashes ${golden}.dbss OUTPUT_VARIABLE info_lines RESULT_VARIABLE rc)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "info --hashes on ${golden}.dbss failed")
+endif()
+set(l 0)
+foreach(hash ${recorded})
+  if(NOT info_lines MATCHES "level ${l} vertices ([0-9]+) triangles ([0-9]+) fnv1a64 ${hash}")
+    message(FATAL_ERROR "info --hashes has no level ${l} line with the recorded hash ${hash}:\n${info_lines}")
+  endif()
+  set(want "vertices ${CMAKE_MATCH_1} triangles ${CMAKE_MATCH_2} fnv1a64 ${hash}")
+  foreach(ext ply obj off)
+    expect_run(0 "level ${l}" ${DBSS} decode ${golden}.dbss -o ${WORK}/geometry.${ext} --level ${l})
+    execute_process(COMMAND ${MESH_HASH} ${WORK}/geometry.${ext} OUTPUT_VARIABLE got OUTPUT_STRIP_TRAILING_WHITESPACE)
+    if(NOT got STREQUAL want)
+      message(FATAL_ERROR "decode --level ${l} -o .${ext}: read back '${got}', the level is '${want}'")
+    endif()
+  endforeach()
+  math(EXPR l "${l} + 1")
+endforeach()
