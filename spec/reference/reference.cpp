@@ -88,7 +88,7 @@ class Reader {
 void check_signature(std::span<const uint8_t> file) {
   static const uint8_t sig[8] = {0x89, 0x44, 0x42, 0x53, 0x0D, 0x0A, 0x1A, 0x0A};
   const size_t n = file.size() < 8 ? file.size() : 8;
-  if (std::memcmp(file.data(), sig, n) != 0) fail("bad_signature");
+  if (n > 0 && std::memcmp(file.data(), sig, n) != 0) fail("bad_signature");  // an empty span may have no data pointer
   if (n < 8) fail("truncated");
 }
 
