@@ -71,7 +71,7 @@ Result<EncodedLevels> encode_levels(const TriangleMesh& control, const PointInde
     if (o.on_level) o.on_level(l);
     // Per odd vertex, written by whichever thread samples it, summed after.
     const size_t odd = static_cast<size_t>(r.next_odd_count());
-    std::vector<uint8_t> source(odd, 0xFF), clamped(odd, 0);
+    std::vector<uint8_t> source(odd, 0xFF), clamped(odd, 0), fitted(odd, 0);
     std::vector<double> magnitude(odd, 0.0);
     // The decoder's own step: it computes each odd vertex's undisplaced
     // point and normal, this chooses q from them, and the vertex moves as a
@@ -85,6 +85,7 @@ Result<EncodedLevels> encode_levels(const TriangleMesh& control, const PointInde
       scratch.give(mine);
       const Quantized q = quantize(s.distance, step);
       source[e] = static_cast<uint8_t>(s.source);
+      fitted[e] = s.fitted;
       // The format's range caps q too; counted with the sampler's clamps.
       clamped[e] = s.clamped || q.clamped;
       magnitude[e] = std::abs(s.distance);
@@ -105,6 +106,7 @@ Result<EncodedLevels> encode_levels(const TriangleMesh& control, const PointInde
       st.by_triangle += source[e] == static_cast<uint8_t>(SampleSource::triangle);
       st.by_plane += source[e] == static_cast<uint8_t>(SampleSource::plane);
       st.by_nearest += source[e] == static_cast<uint8_t>(SampleSource::nearest);
+      st.fitted += fitted[e];
       sum_abs += magnitude[e];
     }
     st.mean_abs_displacement = odd ? sum_abs / odd : 0;

@@ -30,13 +30,13 @@ bool line_hits(const V& p, const V& n, const V& a, const V& b, const V& c, doubl
 }  // namespace
 
 Sample sample_displacement(const PointIndex& index, const double p[3], const double n[3], double radius,
-                           double half_length) {
+                           double half_length, bool fit) {
   SampleScratch scratch;
-  return sample_displacement(index, p, n, radius, half_length, scratch);
+  return sample_displacement(index, p, n, radius, half_length, scratch, fit);
 }
 
 Sample sample_displacement(const PointIndex& index, const double pd[3], const double nd[3], double radius,
-                           double half_length, SampleScratch& scratch) {
+                           double half_length, SampleScratch& scratch, bool fit) {
   const PointCloud& pc = index.points();
   const V p(pd[0], pd[1], pd[2]), n(nd[0], nd[1], nd[2]);
   const auto point = [&](uint32_t i) { return V(pc.xyz[3 * i], pc.xyz[3 * i + 1], pc.xyz[3 * i + 2]); };
@@ -57,6 +57,14 @@ Sample sample_displacement(const PointIndex& index, const double pd[3], const do
   }
   auto finish = [&](double d, SampleSource src) {
     out.source = src;
+    // The hit found the sheet; the fitted surface around it says where the
+    // points' surface is, without the noise of which points the line met.
+    // A fit that leaves the cylinder the hit was found in (its neighbourhood
+    // reaches past the cylinder on a sparse scan) is not trusted over it.
+    if (fit) {
+      const SurfaceFit f = fit_height(index, pd, nd, d, kFitPoints, scratch.fit);
+      if (f.ok && (std::abs(f.height) <= half_length || std::abs(d) > half_length)) d = f.height, out.fitted = true;
+    }
     out.clamped = std::abs(d) > half_length;
     out.distance = std::clamp(d, -half_length, half_length);
     return out;

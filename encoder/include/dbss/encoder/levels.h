@@ -32,6 +32,7 @@ struct LevelStats {
   size_t odd = 0;
   float step = 0;
   size_t clamped = 0, by_triangle = 0, by_plane = 0, by_nearest = 0;
+  size_t fitted = 0;  // samples taken to the local surface fit (the rest: to the hit itself)
   double mean_abs_displacement = 0;
   size_t bytes = 0;  // LEVL chunk data
   format::DisplacementCoding coding = format::DisplacementCoding::byte_planes;

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "dbss/encoder/point_index.h"
+#include "dbss/encoder/surface_fit.h"
 
 namespace dbss {
 
@@ -17,9 +18,17 @@ enum class SampleSource : uint8_t {
 
 struct Sample {
   double distance = 0;  // along the unit normal, model units
-  SampleSource source = SampleSource::nearest;
+  SampleSource source = SampleSource::nearest;  // what found the sheet the line meets
+  bool fitted = false;   // distance is to the local surface fit (surface_fit.h) there
   bool clamped = false;  // |distance| was cut to the limit
 };
+
+// Points in the local surface fit around the line's first hit: enough to
+// average sampling noise away (a quadric has 6 terms), few enough to keep
+// the fit local (about 2.7 point spacings across).  Measured on sampled
+// shapes with noise of 5e-4 of the diagonal: 16 points leave level 3-5
+// errors 10-15% higher, 40 points cost detail on the elephant.
+inline constexpr size_t kFitPoints = 24;
 
 // Working memory of sample_displacement(), owned by the caller so that a
 // loop of samples allocates once: one per thread sampling at the same time.
@@ -31,16 +40,21 @@ struct SampleScratch {
   };
   std::vector<uint32_t> near;          // points in the cylinder's bounding ball
   std::vector<Candidate> cylinder;     // those inside the cylinder
+  FitScratch fit;                      // surface_fit.h
 };
 
 // p: the odd vertex; n: its unit normal (the decoder's); radius: the
 // cylinder's horizontal threshold; half_length: its vertical threshold; the
-// result is clamped to |distance| <= half_length.
+// result is clamped to |distance| <= half_length.  The line's first hit (a
+// triangle of points in the cylinder, their plane, or the nearest point)
+// picks the sheet; the distance is then taken to the fitted surface of the
+// kFitPoints points around that hit (fit_height), unless `fit` is false or
+// the fit fails.
 Sample sample_displacement(const PointIndex& points, const double p[3], const double n[3], double radius,
-                           double half_length, SampleScratch& scratch);
+                           double half_length, SampleScratch& scratch, bool fit = true);
 // The same with scratch space of its own (allocated per call): for single
 // samples and tests.
 Sample sample_displacement(const PointIndex& points, const double p[3], const double n[3], double radius,
-                           double half_length);
+                           double half_length, bool fit = true);
 
 }  // namespace dbss

@@ -1,0 +1,42 @@
+// The surface the points describe near an odd vertex's normal line, as a
+// weighted least-squares height field over the line's foot: what the
+// displacement is sampled against, so that sampling noise (which of a few
+// nearby points or triangles the line happens to hit) becomes a smooth
+// surface instead of noise coded at full precision (issue 15).
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "dbss/encoder/point_index.h"
+
+namespace dbss {
+
+struct FitScratch {
+  std::vector<uint32_t> index;
+  std::vector<float> dist2;
+  std::vector<double> u, v, h, w;  // the kept points in the line's frame, their weights
+};
+
+struct SurfaceFit {
+  bool ok = false;
+  double height = 0;    // where the line meets the fitted surface, along n from p
+  double residual = 0;  // weighted RMS distance of the points from the fit: their noise
+  uint32_t points = 0;  // points the fit used
+};
+
+// p: the odd vertex; n: its unit normal; t0: a first estimate of the
+// surface along the line (the sampler's hit, which picks the sheet of a thin
+// part).  The `k` points nearest the foot p + t0 n, less those farther from
+// the estimate along n than half the neighbourhood's radius (another sheet),
+// are fitted by a quadric height field over the plane normal to n (a plane
+// with fewer than 12 points), weighted by a Gaussian of their distance from
+// the line; the neighbourhood follows the local point spacing, whatever the
+// level's edge length.  Two more rounds reweight each point by its residual
+// (Tukey's biweight), so a stray point left among the surface's points does
+// not pull the fit.  Not ok with fewer than 4 points or an ill-posed fit.
+SurfaceFit fit_height(const PointIndex& points, const double p[3], const double n[3], double t0, size_t k,
+                      FitScratch& scratch);
+
+}  // namespace dbss

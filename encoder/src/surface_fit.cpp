@@ -1,0 +1,108 @@
+#include "dbss/encoder/surface_fit.h"
+
+#include <Eigen/Dense>
+
+#include <algorithm>
+#include <cmath>
+
+namespace dbss {
+
+namespace {
+
+// Weighted least squares of h over (1, u, v[, u², uv, v²]); returns the
+// coefficients (6, the last three zero for a plane) and whether they are
+// finite.
+bool solve(const FitScratch& s, bool quadric, Eigen::Matrix<double, 6, 1>& c) {
+  Eigen::Matrix<double, 6, 6> a = Eigen::Matrix<double, 6, 6>::Zero();
+  Eigen::Matrix<double, 6, 1> b = Eigen::Matrix<double, 6, 1>::Zero();
+  for (size_t i = 0; i < s.h.size(); ++i) {
+    if (s.w[i] == 0) continue;
+    const Eigen::Matrix<double, 6, 1> x(1, s.u[i], s.v[i], s.u[i] * s.u[i], s.u[i] * s.v[i], s.v[i] * s.v[i]);
+    a += s.w[i] * x * x.transpose();
+    b += s.w[i] * s.h[i] * x;
+  }
+  c.setZero();
+  if (quadric) {
+    c = a.ldlt().solve(b);
+  } else {
+    c.head<3>() = a.topLeftCorner<3, 3>().ldlt().solve(b.head<3>());
+  }
+  return c.allFinite();
+}
+
+double residual(const FitScratch& s, size_t i, const Eigen::Matrix<double, 6, 1>& c) {
+  const double u = s.u[i], v = s.v[i];
+  return s.h[i] - (c[0] + c[1] * u + c[2] * v + c[3] * u * u + c[4] * u * v + c[5] * v * v);
+}
+
+}  // namespace
+
+SurfaceFit fit_height(const PointIndex& index, const double p[3], const double n[3], double t0, size_t k,
+                      FitScratch& s) {
+  SurfaceFit out;
+  const PointCloud& pc = index.points();
+  const float foot[3] = {static_cast<float>(p[0] + t0 * n[0]), static_cast<float>(p[1] + t0 * n[1]),
+                         static_cast<float>(p[2] + t0 * n[2])};
+  s.index.resize(k);
+  s.dist2.resize(k);
+  const size_t found = index.nearest_k(foot, k, s.index.data(), s.dist2.data());
+  if (found < 4) return out;
+  const double radius = std::sqrt(static_cast<double>(s.dist2[found - 1]));
+  if (!(radius > 0)) return out;
+  // A frame with n as its third axis.
+  const Eigen::Vector3d nz(n[0], n[1], n[2]);
+  const Eigen::Vector3d helper = std::abs(nz.x()) < 0.6 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
+  const Eigen::Vector3d e1 = nz.cross(helper).normalized(), e2 = nz.cross(e1);
+  const Eigen::Vector3d origin(p[0], p[1], p[2]);
+  // Points farther than this from the first estimate along n belong to
+  // another sheet (a thin part's other side) or are outliers.
+  const double band = 0.5 * radius;
+  s.u.clear(), s.v.clear(), s.h.clear(), s.w.clear();
+  for (size_t i = 0; i < found; ++i) {
+    const uint32_t j = s.index[i];
+    const Eigen::Vector3d d = Eigen::Vector3d(pc.xyz[3 * j], pc.xyz[3 * j + 1], pc.xyz[3 * j + 2]) - origin;
+    const double h = d.dot(nz);
+    if (std::abs(h - t0) > band) continue;
+    // Coordinates in units of the radius keep the normal equations well
+    // conditioned at every level; the Gaussian's sigma is radius / sqrt(2).
+    const double u = d.dot(e1) / radius, v = d.dot(e2) / radius;
+    s.u.push_back(u), s.v.push_back(v), s.h.push_back(h), s.w.push_back(std::exp(-2 * (u * u + v * v)));
+  }
+  const size_t used = s.h.size();
+  if (used < 4) return out;
+  // The quadric where the points are enough to pin its curvature terms.
+  const bool quadric = used >= 12;
+  const std::vector<double> gauss = s.w;
+  Eigen::Matrix<double, 6, 1> c;
+  if (!solve(s, quadric, c)) return out;
+  for (int round = 0; round < 2; ++round) {
+    // Robust scale: the median absolute residual; points beyond 4.685 of it
+    // (Tukey's constant for 95% efficiency on Gaussian noise) get no weight.
+    std::vector<double> r(used);
+    for (size_t i = 0; i < used; ++i) r[i] = std::abs(residual(s, i, c));
+    std::vector<double> sorted = r;
+    std::nth_element(sorted.begin(), sorted.begin() + used / 2, sorted.end());
+    const double scale = 1.4826 * sorted[used / 2];
+    if (!(scale > 1e-12 * radius)) break;  // exact fit: nothing to reweight
+    for (size_t i = 0; i < used; ++i) {
+      const double x = r[i] / (4.685 * scale);
+      s.w[i] = x < 1 ? gauss[i] * (1 - x * x) * (1 - x * x) : 0;
+    }
+    Eigen::Matrix<double, 6, 1> next;
+    if (!solve(s, quadric, next)) break;
+    c = next;
+  }
+  const double height = c[0];
+  // An ill-posed quadric (points along a line) can put its value at the
+  // line far from every point.
+  if (!std::isfinite(height) || std::abs(height - t0) > band) return out;
+  double sw = 0, swr = 0;
+  for (size_t i = 0; i < used; ++i) sw += s.w[i], swr += s.w[i] * std::pow(residual(s, i, c), 2.0);
+  out.ok = true;
+  out.height = height;
+  out.residual = sw > 0 ? std::sqrt(swr / sw) : 0;
+  out.points = static_cast<uint32_t>(used);
+  return out;
+}
+
+}  // namespace dbss
