@@ -9,6 +9,7 @@
 
 #include <CGAL/Advancing_front_surface_reconstruction.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Random.h>
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/compute_average_spacing.h>
 #include <CGAL/jet_estimate_normals.h>
@@ -34,10 +35,16 @@ std::vector<Point> to_points(const std::vector<double>& xyz) {
 
 double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
+// CGAL's default random generator (the Poisson surface mesher's initial
+// points among others) is seeded from the clock; a fixed seed before each
+// reconstruction makes a run repeat the previous one exactly.
+void fix_cgal_seed() { CGAL::get_default_random() = CGAL::Random(0); }
+
 }  // namespace
 
 Reconstruction advancing_front(const std::vector<double>& xyz) {
   const auto t0 = Clock::now();
+  fix_cgal_seed();
   const std::vector<Point> points = to_points(xyz);
   std::vector<std::array<std::size_t, 3>> facets;
   CGAL::advancing_front_surface_reconstruction(points.begin(), points.end(), std::back_inserter(facets));
@@ -62,6 +69,7 @@ Reconstruction advancing_front(const std::vector<double>& xyz) {
 
 Reconstruction poisson(const std::vector<double>& xyz, unsigned neighbours) {
   const auto t0 = Clock::now();
+  fix_cgal_seed();
   using PointNormal = std::pair<Point, Vector>;
   std::vector<PointNormal> pn;
   for (const Point& p : to_points(xyz)) pn.emplace_back(p, Vector(0, 0, 0));
