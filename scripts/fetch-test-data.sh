@@ -10,6 +10,9 @@ dest=test-data
 files=(
   data/meshes/bunny00.off
   data/meshes/fandisk.off
+  data/meshes/armadillo.off                      # rd_bench's true surfaces (with fandisk)
+  data/meshes/eight.off
+  data/meshes/knot1.off
   data/points_3/kitten.xyz
   data/points_3/hippo1.ply
   data/points_3/half.xyz

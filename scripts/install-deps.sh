@@ -10,7 +10,9 @@ packages=(
   libnanoflann-dev libeigen3-dev                 # KD-tree queries, quadrics (encoder)
   libopenmesh-dev                                # QEM decimation (encoder); differential tests
   catch2                                         # tests (Catch2 v2)
+  libcgal-dev                                    # rd_bench's peers only (reconstruction); header-only
 )
+# Optional, for scripts/plot-rd.py's plots: apt-get install python3-matplotlib
 
 missing=()
 for p in "${packages[@]}"; do
