@@ -71,6 +71,7 @@ Result<EncodedLevels> encode_levels(const TriangleMesh& control, const PointInde
     if (o.on_level) o.on_level(l);
     // Per odd vertex, written by whichever thread samples it, summed after.
     const size_t odd = static_cast<size_t>(r.next_odd_count());
+    const double dead_zone = dead_zone_steps(odd, points.points().size());
     std::vector<uint8_t> source(odd, 0xFF), clamped(odd, 0), fitted(odd, 0);
     std::vector<double> magnitude(odd, 0.0);
     // The decoder's own step: it computes each odd vertex's undisplaced
@@ -83,7 +84,7 @@ Result<EncodedLevels> encode_levels(const TriangleMesh& control, const PointInde
       SampleScratch& mine = scratch.take();
       const Sample s = sample_displacement(points, p, n, 0.5 * len, 0.5 * len, mine);
       scratch.give(mine);
-      const Quantized q = quantize(s.distance, step);
+      const Quantized q = quantize(s.distance, step, dead_zone);
       source[e] = static_cast<uint8_t>(s.source);
       fitted[e] = s.fitted;
       // The format's range caps q too; counted with the sampler's clamps.

@@ -60,6 +60,7 @@ Result<std::vector<DssLevel>> encode_dss_baseline(const TriangleMesh& control, c
     level.step = o.step;
     level.q.assign(t.vertex_count, 0);
     d.samples = t.vertex_count;
+    const double dead_zone = dead_zone_steps(t.vertex_count, points.points().size());
     for (uint32_t v = 0; v < t.vertex_count; ++v) {
       const double* n = normals[v].data();
       if (n[0] == 0 && n[1] == 0 && n[2] == 0) continue;
@@ -68,7 +69,7 @@ Result<std::vector<DssLevel>> encode_dss_baseline(const TriangleMesh& control, c
       const Sample s =
           sample_displacement(points, p, n, std::max(len, min_radius), 0.5 * std::ldexp(len, static_cast<int>(l)), scratch);
       d.clamped += s.clamped;
-      level.q[v] = quantize(s.distance, o.step).q;  // dbss's quantizer
+      level.q[v] = quantize(s.distance, o.step, dead_zone).q;  // dbss's quantizer and dead zone
       const float dq = static_cast<float>(level.q[v]) * o.step;
       for (int a = 0; a < 3; ++a) d.mesh.positions[3 * size_t{v} + a] = static_cast<float>(p[a] + dq * n[a]);
     }

@@ -12,6 +12,7 @@
 #include "../shapes.h"
 #include "dbss/decoder/topology.h"
 #include "dbss/encoder/levels.h"
+#include "dbss/encoder/quantize.h"
 #include "dbss/encoder/sampling.h"
 #include "dbss/format/container.h"
 #include "reference.h"
@@ -58,6 +59,9 @@ std::vector<std::vector<double>> check_quantization(const EncodedLevels& enc, co
     REQUIRE(level.q.size() == odd.size());
     const double step = level.step;
     const size_t evens = enc.positions[l - 1].size() / 3;
+    // Up to the points' density plain rounding; past it (more odd vertices
+    // than points) a dead zone of 1.5 steps around 0.
+    const double dead_zone = odd.size() > index.points().size() ? 1.5 : 0.5;
     samples.emplace_back();
     size_t wrong = 0, off = 0;
     for (size_t e = 0; e < odd.size(); ++e) {
@@ -65,14 +69,16 @@ std::vector<std::vector<double>> check_quantization(const EncodedLevels& enc, co
       const Sample s = sample_displacement(index, o.point, o.normal, o.half_edge_length, o.half_edge_length);
       samples.back().push_back(s.distance);
       const double limit = format::kMaxAbsDisplacement;
-      const int32_t expect = static_cast<int32_t>(std::clamp(std::round(s.distance / step), -limit, limit));
+      const int32_t expect = std::abs(s.distance) < dead_zone * step
+                                 ? 0
+                                 : static_cast<int32_t>(std::clamp(std::round(s.distance / step), -limit, limit));
       wrong += level.q[e] != expect;
       // Where the decoder put the vertex, along its normal.
       const float* m = &enc.positions[l][3 * (evens + e)];
       double along = 0;
       for (int a = 0; a < 3; ++a) along += (m[a] - o.point[a]) * o.normal[a];
       // Rounding to binary32 moves a vertex by an ulp of its coordinates.
-      if (std::abs(s.distance - along) > 0.5 * step + 1e-6) ++off;
+      if (std::abs(s.distance - along) > dead_zone * step + 1e-6) ++off;
     }
     CHECK(wrong == 0);
     CHECK(off == 0);
@@ -157,6 +163,43 @@ TEST_CASE("quantizer and sampler on a sphere: samples match the exact distance a
   INFO("step " << step / R << " R, worst sample error " << worst_sample / R << " R, worst vertex " << worst_vertex / R << " R");
   CHECK(worst_sample < 5e-4 * R);
   CHECK(worst_vertex <= 0.5 * step + worst_sample + 1e-6 * R);
+}
+
+TEST_CASE("quantizer past the points' density: a dead zone of 1.5 steps, so no level there stores +-1") {
+  CHECK(quantize(1.49, 1.0f, 1.5).q == 0);
+  CHECK(quantize(-1.49, 1.0f, 1.5).q == 0);
+  CHECK(quantize(1.5, 1.0f, 1.5).q == 2);
+  CHECK(quantize(0.6, 1.0f).q == 1);
+  CHECK(dead_zone_steps(1001, 1000) == 1.5);
+  CHECK(dead_zone_steps(1000, 1000) == 0.5);
+  // An icosahedron under 600 points of its sphere: levels 1-3 have 30, 120
+  // and 480 odd vertices (plain rounding), level 4 has 1920 (dead zone).
+  const TriangleMesh control = test::icosahedron();
+  const double R = std::sqrt(double{control.positions[0]} * control.positions[0] + double{control.positions[1]} * control.positions[1]);
+  PointCloud pc;
+  const size_t count = 600;
+  for (size_t i = 0; i < count; ++i) {
+    const double z = 1 - (2 * i + 1.0) / count, r = std::sqrt(1 - z * z);
+    const double a = std::numbers::pi * (3 - std::sqrt(5.0)) * i;
+    pc.xyz.insert(pc.xyz.end(), {static_cast<float>(R * r * std::cos(a)), static_cast<float>(R * r * std::sin(a)),
+                                 static_cast<float>(R * z)});
+  }
+  const PointIndex index(pc);
+  LevelEncodeOptions o;
+  o.levels = 4;
+  o.step = quantization_step(1e-4, 2 * R * std::sqrt(3.0));
+  auto enc = encode_levels(control, index, o);
+  REQUIRE(enc.ok());
+  const auto samples = check_quantization(enc.value(), index);  // each level's rule, q by q
+  size_t ones_before = 0, ones_past = 0, rounded_past = 0;
+  for (size_t l = 0; l < 4; ++l)
+    for (int32_t q : enc.value().levels[l].q) (l < 3 ? ones_before : ones_past) += std::abs(q) == 1;
+  // Level-4 samples plain rounding would have stored as +-1.
+  for (double d : samples[3]) rounded_past += std::abs(d) >= 0.5 * o.step && std::abs(d) < 1.5 * o.step;
+  INFO("+-1 before the density " << ones_before << ", past it " << ones_past << ", +-1 by plain rounding past it " << rounded_past);
+  CHECK(ones_before > 0);
+  CHECK(rounded_past > 0);  // the dead zone has something to do at level 4
+  CHECK(ones_past == 0);
 }
 
 TEST_CASE("sampler on a thin slab: the sheet nearer the vertex wins") {
