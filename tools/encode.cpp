@@ -178,7 +178,7 @@ int run_encode(const std::vector<std::string_view>& args) {
   row("surface", 0, nullptr, surface_notes);
   row("QEM simplification", st.seconds.simplify, &st.simplified, "");
   row("projection", st.seconds.project, &st.control, std::to_string(st.projection_skipped) + " vertices kept off the points");
-  row("Draco", e.seconds.draco, &e.control, std::to_string(e.contents.control_mesh.size()) + " bytes of Draco, " + std::to_string(options.control_bits) + "-bit positions");
+  row("Draco", e.seconds.draco, &e.control, std::to_string(e.contents.control_mesh.size()) + " bytes of Draco, " + std::to_string(e.control_bits) + "-bit positions");
   row("displacement levels", e.seconds.levels, nullptr, std::to_string(options.levels) + " level(s)");
   row("self-check", e.seconds.check, nullptr, std::to_string(e.check.warnings.size()) + " warning(s)");
   row("container", e.seconds.serialize, nullptr, std::to_string(e.bytes.size()) + " bytes");

@@ -14,7 +14,7 @@ const char* const kEncodeOptionsHelp =
     "                         twice an open sheet's; at least 96 + 64 per\n"
     "                         handle, at most 4000)\n"
     "  --control-bits B       Draco position bits of the control mesh, 8..30\n"
-    "                         (default 16)\n"
+    "                         (default: from the step, about half a step of rounding)\n"
     "  --levels L             subdivision levels with displacements, 0..8\n"
     "                         (default 3)\n"
     "  --error E              largest quantization error of a displacement,\n"

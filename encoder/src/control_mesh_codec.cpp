@@ -3,9 +3,24 @@
 #include <draco/compression/encode.h>
 #include <draco/mesh/mesh.h>
 
+#include <algorithm>
+#include <cmath>
 #include <string>
 
 namespace dbss {
+
+int control_bits_for_step(const TriangleMesh& mesh, float step) {
+  if (mesh.vertex_count() == 0 || !(step > 0)) return 16;
+  float lo[3], hi[3];
+  for (int a = 0; a < 3; ++a) lo[a] = hi[a] = mesh.positions[a];
+  for (size_t v = 0; v < mesh.vertex_count(); ++v)
+    for (int a = 0; a < 3; ++a)
+      lo[a] = std::min(lo[a], mesh.positions[3 * v + a]), hi[a] = std::max(hi[a], mesh.positions[3 * v + a]);
+  const double extent = std::max({double{hi[0]} - lo[0], double{hi[1]} - lo[1], double{hi[2]} - lo[2]});
+  if (!(extent > 0)) return 16;
+  // Draco's quantization rounds to within half of extent / 2^bits.
+  return static_cast<int>(std::clamp(std::ceil(std::log2(extent / step)), 8.0, 16.0));
+}
 
 Result<std::vector<uint8_t>> encode_control_mesh(const TriangleMesh& in, const ControlCodecOptions& options) {
   if (in.positions.size() % 3 != 0 || in.triangles.size() % 3 != 0 || in.triangle_count() == 0)

@@ -26,7 +26,8 @@ Result<Encoding> encode_points(const PointCloud& pc, const EncodeOptions& o) {
 }
 
 Result<Encoding> encode_points(const PointIndex& input_index, const EncodeOptions& o) {
-  if (o.control_bits < 8 || o.control_bits > 30) return Status(ErrorCode::invalid_argument, "control bits must be 8..30");
+  if (o.control_bits != 0 && (o.control_bits < 8 || o.control_bits > 30))
+    return Status(ErrorCode::invalid_argument, "control bits must be 8..30, or 0 to derive them from the step");
   if (o.levels > format::kMaxLevelsInFormat) return Status(ErrorCode::invalid_argument, "too many levels");
   if (input_index.points().size() == 0) return Status(ErrorCode::invalid_argument, "no points");
   Encoding e;
@@ -51,23 +52,7 @@ Result<Encoding> encode_points(const PointIndex& input_index, const EncodeOption
   e.stages = std::move(stages).value();
   e.seconds.control = since(t);
 
-  // The file holds Draco's version of the control mesh; everything after
-  // continues from what a decoder will see.
-  t = Clock::now();
-  auto draco = encode_control_mesh(e.stages.control, {o.control_bits, 0});
-  if (!draco.ok()) return draco.status();
-  auto decoded = decode_control_mesh(draco.value(), 1u << 30, 1u << 30);
-  if (!decoded.ok()) return Status(ErrorCode::internal, "control mesh after Draco: " + decoded.status().to_string());
-  e.control = std::move(decoded).value();
-  auto topo = build_topology(static_cast<uint32_t>(e.control.vertex_count()), e.control.triangles);
-  if (!topo.ok()) return Status(ErrorCode::internal, "control mesh after Draco: " + topo.status().to_string());
-  e.seconds.draco = since(t);
-
   format::FileContents& c = e.contents;
-  c.header.control_position_bits = static_cast<uint8_t>(o.control_bits);
-  c.header.control_vertex_count = static_cast<uint32_t>(e.control.vertex_count());
-  c.header.control_edge_count = topo.value().edge_count();
-  c.header.control_triangle_count = static_cast<uint32_t>(e.control.triangle_count());
   c.header.bbox_min = {pc.xyz[0], pc.xyz[1], pc.xyz[2]};
   c.header.bbox_max = c.header.bbox_min;
   for (size_t i = 0; i < pc.size(); ++i)
@@ -75,7 +60,6 @@ Result<Encoding> encode_points(const PointIndex& input_index, const EncodeOption
       c.header.bbox_min[a] = std::min(c.header.bbox_min[a], pc.xyz[3 * i + a]);
       c.header.bbox_max[a] = std::max(c.header.bbox_max[a], pc.xyz[3 * i + a]);
     }
-  c.control_mesh = std::move(draco).value();
   double diag2 = 0;
   for (int a = 0; a < 3; ++a) diag2 += std::pow(double(c.header.bbox_max[a]) - c.header.bbox_min[a], 2);
   e.diagonal = std::sqrt(diag2);
@@ -91,6 +75,30 @@ Result<Encoding> encode_points(const PointIndex& input_index, const EncodeOption
     e.error = o.error;
   }
 
+  // Draco's position bits: from the step unless given.  A control vertex
+  // is an even vertex of every level and never moves again, so its
+  // rounding should be about a displacement's (half a step): 2^bits steps
+  // across the control mesh's largest extent.  Measured on sampled shapes:
+  // 16 bits cost 30% more level-0 bytes than 12-13 for no error at any level.
+  e.control_bits = o.control_bits ? o.control_bits : control_bits_for_step(e.stages.control, e.step);
+
+  // The file holds Draco's version of the control mesh; everything after
+  // continues from what a decoder will see.
+  t = Clock::now();
+  auto draco = encode_control_mesh(e.stages.control, {e.control_bits, 0});
+  if (!draco.ok()) return draco.status();
+  auto decoded = decode_control_mesh(draco.value(), 1u << 30, 1u << 30);
+  if (!decoded.ok()) return Status(ErrorCode::internal, "control mesh after Draco: " + decoded.status().to_string());
+  e.control = std::move(decoded).value();
+  auto topo = build_topology(static_cast<uint32_t>(e.control.vertex_count()), e.control.triangles);
+  if (!topo.ok()) return Status(ErrorCode::internal, "control mesh after Draco: " + topo.status().to_string());
+  e.seconds.draco = since(t);
+
+  c.header.control_position_bits = static_cast<uint8_t>(e.control_bits);
+  c.header.control_vertex_count = static_cast<uint32_t>(e.control.vertex_count());
+  c.header.control_edge_count = topo.value().edge_count();
+  c.header.control_triangle_count = static_cast<uint32_t>(e.control.triangle_count());
+  c.control_mesh = std::move(draco).value();
   t = Clock::now();
   LevelEncodeOptions lo;
   lo.levels = o.levels;
@@ -120,7 +128,7 @@ Result<Encoding> encode_points(const PointIndex& input_index, const EncodeOption
   std::snprintf(error_text, sizeof error_text, "%g", e.error);
   const std::string params = "grid=" + std::to_string(e.stages.carving.grid) + " control-faces=" +
                              std::to_string(e.stages.control.triangle_count()) + " control-bits=" +
-                             std::to_string(o.control_bits) + " levels=" + std::to_string(o.levels) +
+                             std::to_string(e.control_bits) + " levels=" + std::to_string(o.levels) +
                              " error=" + error_text + " effort=" + std::to_string(o.effort) +
                              " surface=" + surface_mode_name(o.control.surface) +
                              (o.outliers.enabled ? "" : " keep-outliers");

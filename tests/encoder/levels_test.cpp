@@ -171,3 +171,46 @@ TEST_CASE("error bounds on every test shape: smooth shapes get closer level by l
     }
   }
 }
+
+TEST_CASE("control mesh bits follow the step: about half a step of rounding at every control vertex") {
+  TriangleMesh cube;  // only the extent matters: 2 along x
+  cube.positions = {-1, 0, 0, 1, 0.5f, 0, 0, 1, 0.25f};
+  cube.triangles = {0, 1, 2};
+  CHECK(control_bits_for_step(cube, 2.0f / 1000) == 10);   // 2^10 = 1024 >= 1000 steps
+  CHECK(control_bits_for_step(cube, 2.0f / 1025) == 11);
+  CHECK(control_bits_for_step(cube, 1.0f) == 8);            // never under 8
+  CHECK(control_bits_for_step(cube, 1e-9f) == 16);          // never over the old fixed 16
+
+  const test::Shape s = test::genus_shapes()[1];
+  const PointCloud pc = test::sample_sdf(s.sdf, s.lo, s.hi, 20000);
+  EncodeOptions o;
+  o.levels = 1;
+  auto e = encode_points(pc, o);
+  REQUIRE(e.ok());
+  const Encoding& enc = e.value();
+  CHECK(enc.control_bits == control_bits_for_step(enc.stages.control, enc.step));
+  CHECK(enc.control_bits < 16);  // the default error (1e-4) needs 13 bits or so
+  CHECK(format::read_all(enc.bytes).header().control_position_bits == enc.control_bits);
+  // Every decoded control vertex lies within half a step (per coordinate,
+  // plus binary32 rounding) of a vertex the encoder built: Draco rounds
+  // to that grid.
+  const std::vector<float>& before = enc.stages.control.positions;
+  double worst = 0;
+  for (size_t v = 0; v < enc.control.vertex_count(); ++v) {
+    double best = 1e30;
+    for (size_t w = 0; w < before.size() / 3; ++w) {
+      double d = 0;
+      for (int a = 0; a < 3; ++a) d = std::max(d, std::abs(double{enc.control.positions[3 * v + a]} - before[3 * w + a]));
+      best = std::min(best, d);
+    }
+    worst = std::max(worst, best);
+  }
+  INFO("worst control vertex rounding " << worst << ", step " << enc.step);
+  CHECK(worst <= 0.5 * enc.step * 1.01);
+
+  // Given bits are kept.
+  o.control_bits = 16;
+  auto f = encode_points(pc, o);
+  REQUIRE(f.ok());
+  CHECK(f.value().control_bits == 16);
+}

@@ -24,7 +24,7 @@ namespace dbss {
 struct EncodeOptions {
   OutlierOptions outliers;  // removed before carving unless outliers.enabled is false
   ControlMeshOptions control;
-  int control_bits = 16;  // Draco position bits of the control mesh, 8..30
+  int control_bits = 0;  // Draco position bits of the control mesh, 8..30; 0: from the step (control_bits_for_step)
   uint32_t levels = 3;    // displacement levels, 0..kMaxLevelsInFormat
   // Quantization: `step` (model units) when > 0, else derived from `error`
   // (largest rounding error relative to the bounding-box diagonal; step = 2 *
@@ -54,6 +54,7 @@ struct Encoding {
   EncodedLevels levels;           // per level: reconstruction (bit-identical to the decoder's) and stats
   double diagonal = 0;            // of the points' bounding box, model units
   float step = 0;                 // the quantization step of every level, model units (`step` or from `error`)
+  int control_bits = 0;           // Draco position bits of the control mesh (given, or from the step)
   double error = 0;               // the error target actually used (from `step` when given)
   EncodeTimes seconds;
 };
