@@ -46,6 +46,10 @@ foreach(stage 1-occupied-cells 2-carved-cells 3-triangulated 4-shrink-wrapped 5-
   endif()
 endforeach()
 expect_run(0 "complete, every chunk verified" ${DBSS} info ${g})
+# The default is --levels auto: the example's 8000 points stop it at level 3
+# (2462 vertices at level 2, 9854 at level 3); the decoded finest level is 3.
+expect_run(0 "3 level\\(s\\) \\(auto: level 3 is the first with more vertices than the 8000 points\\)"
+           ${DBSS} encode ${example} -o ${WORK}/auto.dbss --levels auto)
 expect_run(0 "level 3, [0-9]+ vertices" ${DBSS} decode ${g} -o ${WORK}/dt.off)
 file(STRINGS ${WORK}/dt.off off_header LIMIT_COUNT 2)
 if(NOT off_header MATCHES "OFF;[0-9]+ [0-9]+ 0")
@@ -53,7 +57,7 @@ if(NOT off_header MATCHES "OFF;[0-9]+ [0-9]+ 0")
 endif()
 expect_run(0 "level 0" ${DBSS} decode ${g} -o ${WORK}/dt.ply --level 0)
 expect_run(1 "level 4 is not in the file" ${DBSS} decode ${g} -o ${WORK}/x.ply --level 4)
-expect_run(1 "--levels needs a whole number" ${DBSS} encode ${example} -o ${WORK}/x.dbss --levels 9)
+expect_run(1 "--levels needs auto or a whole number" ${DBSS} encode ${example} -o ${WORK}/x.dbss --levels 9)
 expect_run(1 "--error needs a number" ${DBSS} encode ${example} -o ${WORK}/x.dbss --error abc)
 expect_run(1 "unknown mesh format" ${DBSS} decode ${g} -o ${WORK}/x.vrml)
 # Encode -> decode through every supported input format: the decoded level
@@ -87,7 +91,7 @@ expect_run(1 "bad_signature" ${DBSS} info ${WORK}/text.dbss)
 expect_run(0 "usage: dbss compare" ${DBSS} compare --help)
 expect_run(1 "no input file" ${DBSS} compare)
 expect_run(1 "unknown option '--bogus'" ${DBSS} compare ${example} --bogus)
-expect_run(1 "--levels needs a whole number" ${DBSS} compare ${example} --levels x)
+expect_run(1 "--levels needs auto or a whole number" ${DBSS} compare ${example} --levels x)
 expect_run(1 "missing.xyz: cannot open" ${DBSS} compare ${WORK}/missing.xyz)
 expect_run(0 "DSS all B" ${DBSS} compare ${example} --levels 2)
 expect_run(0 "\"dss_all_bytes\": [0-9]+, \"dbss_clamped\"" ${DBSS} compare ${example} --levels 1 --json --no-errors)

@@ -55,6 +55,7 @@ int run_encode(const std::vector<std::string_view>& args) {
   std::string input, output, dump;
   bool strict = false;
   EncodeOptions options;
+  options.levels = kAutoLevels;  // the command's default: as many levels as the points support
   for (size_t i = 0; i < args.size(); ++i) {
     const std::string_view a = args[i];
     std::string error;
@@ -179,11 +180,20 @@ int run_encode(const std::vector<std::string_view>& args) {
   row("QEM simplification", st.seconds.simplify, &st.simplified, "");
   row("projection", st.seconds.project, &st.control, std::to_string(st.projection_skipped) + " vertices kept off the points");
   row("Draco", e.seconds.draco, &e.control, std::to_string(e.contents.control_mesh.size()) + " bytes of Draco, " + std::to_string(e.control_bits) + "-bit positions");
-  row("displacement levels", e.seconds.levels, nullptr, std::to_string(options.levels) + " level(s)");
+  row("displacement levels", e.seconds.levels, nullptr,
+      std::to_string(e.level_count) + " level(s)" +
+          (options.levels == kAutoLevels
+               ? std::string(" (auto: ") +
+                     (e.level_count < format::kMaxLevelsInPractice || e.levels.positions.back().size() / 3 > e.points.size()
+                          ? "level " + std::to_string(e.level_count) + " is the first with more vertices than the " +
+                                std::to_string(e.points.size()) + " points"
+                          : "the most levels --levels allows") +
+                     ")"
+               : ""));
   row("self-check", e.seconds.check, nullptr, std::to_string(e.check.warnings.size()) + " warning(s)");
   row("container", e.seconds.serialize, nullptr, std::to_string(e.bytes.size()) + " bytes");
   if (!dump.empty()) std::printf("stages written to %s/\n", dump.c_str());
-  if (options.levels > 0) {
+  if (e.level_count > 0) {
     // Quality, relative to the diagonal: the points' mean distance to each
     // level's surface, and each level's vertices' mean distance to the
     // surface of the points (a plane through their 8 nearest points).
@@ -191,7 +201,7 @@ int run_encode(const std::vector<std::string_view>& args) {
     const PointIndex index(e.points);
     std::printf("\n%-5s %9s %9s %10s %11s %9s %8s %11s %11s\n", "level", "odd", "vertices", "step", "clamped", "bytes",
                 "bits/odd", "pts->surf", "surf->pts");
-    for (uint32_t l = 0; l <= options.levels; ++l) {
+    for (uint32_t l = 0; l <= e.level_count; ++l) {
       PointCloud mesh_pts;
       mesh_pts.xyz = e.levels.positions[l];
       double to_mesh = points_to_mesh(e.points.xyz, {e.levels.positions[l], e.levels.triangles[l]}).mean;

@@ -15,8 +15,9 @@ const char* const kEncodeOptionsHelp =
     "                         handle, at most 4000)\n"
     "  --control-bits B       Draco position bits of the control mesh, 8..30\n"
     "                         (default: from the step, about half a step of rounding)\n"
-    "  --levels L             subdivision levels with displacements, 0..8\n"
-    "                         (default 3)\n"
+    "  --levels L             subdivision levels with displacements, 0..8, or\n"
+    "                         auto (the default): up to the first level with\n"
+    "                         more vertices than there are points\n"
     "  --error E              largest quantization error of a displacement,\n"
     "                         relative to the bounding-box diagonal, 1e-7..0.1\n"
     "                         (default 1e-4: the step is 2E x diagonal)\n"
@@ -59,9 +60,14 @@ OptionParse parse_encode_option(const std::vector<std::string_view>& args, size_
     if (!parse_int(v, 8, 30, n)) return error = "--control-bits needs a whole number from 8 to 30", OptionParse::bad;
     o.control_bits = static_cast<int>(n);
   } else if (a == "--levels") {
-    if (!parse_int(v, 0, format::kMaxLevelsInPractice, n))
-      return error = "--levels needs a whole number from 0 to " + std::to_string(format::kMaxLevelsInPractice), OptionParse::bad;
-    o.levels = static_cast<uint32_t>(n);
+    if (v == "auto") {
+      o.levels = kAutoLevels;
+    } else {
+      if (!parse_int(v, 0, format::kMaxLevelsInPractice, n))
+        return error = "--levels needs auto or a whole number from 0 to " + std::to_string(format::kMaxLevelsInPractice),
+               OptionParse::bad;
+      o.levels = static_cast<uint32_t>(n);
+    }
   } else if (a == "--effort") {
     if (!parse_int(v, 1, 22, n)) return error = "--effort needs a whole number from 1 to 22", OptionParse::bad;
     o.effort = static_cast<int>(n);

@@ -20,6 +20,15 @@ using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 }  // namespace
 
+uint32_t auto_levels(const format::MeshCounts& control, size_t points) {
+  uint32_t l = 1;
+  for (; l < format::kMaxLevelsInPractice; ++l) {
+    const auto c = format::counts_at_level(control, l);
+    if (!c || c->vertices > points) break;
+  }
+  return l;
+}
+
 Result<Encoding> encode_points(const PointCloud& pc, const EncodeOptions& o) {
   if (pc.size() == 0) return Status(ErrorCode::invalid_argument, "no points");
   return encode_points(PointIndex(pc), o);
@@ -28,7 +37,8 @@ Result<Encoding> encode_points(const PointCloud& pc, const EncodeOptions& o) {
 Result<Encoding> encode_points(const PointIndex& input_index, const EncodeOptions& o) {
   if (o.control_bits != 0 && (o.control_bits < 8 || o.control_bits > 30))
     return Status(ErrorCode::invalid_argument, "control bits must be 8..30, or 0 to derive them from the step");
-  if (o.levels > format::kMaxLevelsInFormat) return Status(ErrorCode::invalid_argument, "too many levels");
+  if (o.levels > format::kMaxLevelsInFormat && o.levels != kAutoLevels)
+    return Status(ErrorCode::invalid_argument, "too many levels");
   if (input_index.points().size() == 0) return Status(ErrorCode::invalid_argument, "no points");
   Encoding e;
   auto t = Clock::now();
@@ -99,15 +109,20 @@ Result<Encoding> encode_points(const PointIndex& input_index, const EncodeOption
   c.header.control_edge_count = topo.value().edge_count();
   c.header.control_triangle_count = static_cast<uint32_t>(e.control.triangle_count());
   c.control_mesh = std::move(draco).value();
+  e.level_count = o.levels == kAutoLevels
+                      ? auto_levels({c.header.control_vertex_count, c.header.control_edge_count, c.header.control_triangle_count},
+                                    pc.size())
+                      : o.levels;
+  const uint32_t level_count = e.level_count;
   t = Clock::now();
   LevelEncodeOptions lo;
-  lo.levels = o.levels;
+  lo.levels = level_count;
   lo.step = e.step;
   lo.zstd_level = o.effort;
   lo.threads = std::max(1u, o.threads);
   if (o.on_progress)
     lo.on_level = [&](uint32_t l) {
-      o.on_progress("sampling level " + std::to_string(l) + " of " + std::to_string(o.levels));
+      o.on_progress("sampling level " + std::to_string(l) + " of " + std::to_string(level_count));
     };
   auto encoded = encode_levels(e.control, index, lo);
   if (!encoded.ok()) return encoded.status();
@@ -120,7 +135,7 @@ Result<Encoding> encode_points(const PointIndex& input_index, const EncodeOption
   e.seconds.check = since(t);
 
   t = Clock::now();
-  c.header.level_count = static_cast<uint8_t>(o.levels);
+  c.header.level_count = static_cast<uint8_t>(level_count);
   c.header.error_target = static_cast<float>(e.error);
   c.levels = e.levels.levels;
   c.level_data = e.levels.chunks;  // compressed once, when each level's coding was chosen
@@ -128,7 +143,7 @@ Result<Encoding> encode_points(const PointIndex& input_index, const EncodeOption
   std::snprintf(error_text, sizeof error_text, "%g", e.error);
   const std::string params = "grid=" + std::to_string(e.stages.carving.grid) + " control-faces=" +
                              std::to_string(e.stages.control.triangle_count()) + " control-bits=" +
-                             std::to_string(e.control_bits) + " levels=" + std::to_string(o.levels) +
+                             std::to_string(e.control_bits) + " levels=" + std::to_string(level_count) + (o.levels == kAutoLevels ? " (auto)" : "") +
                              " error=" + error_text + " effort=" + std::to_string(o.effort) +
                              " surface=" + surface_mode_name(o.control.surface) +
                              (o.outliers.enabled ? "" : " keep-outliers");

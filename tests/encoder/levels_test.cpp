@@ -214,3 +214,13 @@ TEST_CASE("control mesh bits follow the step: about half a step of rounding at e
   REQUIRE(f.ok());
   CHECK(f.value().control_bits == 16);
 }
+
+TEST_CASE("auto levels: up to the first level with more vertices than points, 1..8") {
+  const format::MeshCounts control{100, 300, 200};  // closed: V - E + F = 0
+  // Level 1: 400 vertices, level 2: 1600, level 3: 6400.
+  CHECK(auto_levels(control, 50) == 1);
+  CHECK(auto_levels(control, 400) == 2);  // level 1 has exactly as many: not more
+  CHECK(auto_levels(control, 1000) == 2);
+  CHECK(auto_levels(control, 1600) == 3);
+  CHECK(auto_levels(control, size_t{1} << 40) == format::kMaxLevelsInPractice);
+}

@@ -21,11 +21,22 @@
 
 namespace dbss {
 
+// EncodeOptions::levels: as many levels as the points support (auto_levels).
+inline constexpr uint32_t kAutoLevels = 0xFFFFFFFFu;
+
+// Levels for `points` points over a control mesh with `control` counts: up
+// to and including the first level with more vertices than there are
+// points, within 1..kMaxLevelsInPractice.  Past that level the points
+// cannot say more: on sampled shapes (bench/rd_bench.md) no later level
+// came more than 1% closer to the true surface, while each cost 1.2-2.3x
+// the bytes of the one before.
+uint32_t auto_levels(const format::MeshCounts& control, size_t points);
+
 struct EncodeOptions {
   OutlierOptions outliers;  // removed before carving unless outliers.enabled is false
   ControlMeshOptions control;
   int control_bits = 0;  // Draco position bits of the control mesh, 8..30; 0: from the step (control_bits_for_step)
-  uint32_t levels = 3;    // displacement levels, 0..kMaxLevelsInFormat
+  uint32_t levels = 3;    // displacement levels, 0..kMaxLevelsInFormat, or kAutoLevels
   // Quantization: `step` (model units) when > 0, else derived from `error`
   // (largest rounding error relative to the bounding-box diagonal; step = 2 *
   // error * diagonal).
@@ -55,6 +66,7 @@ struct Encoding {
   double diagonal = 0;            // of the points' bounding box, model units
   float step = 0;                 // the quantization step of every level, model units (`step` or from `error`)
   int control_bits = 0;           // Draco position bits of the control mesh (given, or from the step)
+  uint32_t level_count = 0;       // levels in the file (given, or auto_levels)
   double error = 0;               // the error target actually used (from `step` when given)
   EncodeTimes seconds;
 };
