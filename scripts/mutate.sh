@@ -67,10 +67,17 @@ m sampler-query-axes-swapped encoder/src/sampling.cpp \
   'const float q[3] = {static_cast<float>(pd[1]), static_cast<float>(pd[0]), static_cast<float>(pd[2])};'
 m carving-no-give-back encoder/src/cell_carving.cpp \
   'g.state[id] = touches_air ? CellGrid::kAir : CellGrid::kInside;' 'g.state[id] = CellGrid::kInside;'
-m ply-never-byte-swapped encoder/src/ply_reader.cpp \
+m ply-never-byte-swapped io/src/ply.cpp \
   'const bool swap = (fmt == big) != (std::endian::native == std::endian::big);' 'const bool swap = false;'
-m triangle-distance-corner-region encoder/src/surface_distance.cpp \
+m triangle-distance-corner-region encoder/src/triangle_tree.cpp \
   'if (d3 >= 0 && d4 <= d3) return dist2(p, b);' 'if (d3 >= 0 && d4 >= d3) return dist2(p, b);'
+# Issue 15's sampler and quantizer, issue 14's io library.
+m dead-zone-off encoder/include/dbss/encoder/quantize.h \
+  'inline constexpr double kDeadZoneSteps = 1.5;' 'inline constexpr double kDeadZoneSteps = 0.5;'
+m fit-ignored encoder/src/sampling.cpp 'if (f.ok && (std::abs(f.height)' 'if (false && f.ok && (std::abs(f.height)'
+m fit-not-robust encoder/src/surface_fit.cpp 'for (int round = 0; round < 2; ++round)' 'for (int round = 0; round < 0; ++round)'
+m control-bits-one-short encoder/src/control_mesh_codec.cpp 'std::ceil(std::log2(extent / step))' 'std::floor(std::log2(extent / step))'
+m obj-negative-index-off-by-one io/src/obj.cpp 'const long long index = i > 0 ? i - 1 : n + i;' 'const long long index = i > 0 ? i - 1 : n + i + 1;'
 
 if [ "${1:-}" = --list ]; then
   for i in "${!names[@]}"; do printf '%-32s %s\n' "${names[$i]}" "${files[$i]}"; done
