@@ -86,6 +86,19 @@ std::vector<std::vector<double>> check_quantization(const EncodedLevels& enc, co
   return samples;
 }
 
+// `count` points evenly over the sphere of radius R about the origin (a
+// Fibonacci lattice).
+PointCloud fibonacci_sphere(double R, size_t count) {
+  PointCloud pc;
+  for (size_t i = 0; i < count; ++i) {
+    const double z = 1 - (2 * i + 1.0) / count, r = std::sqrt(1 - z * z);
+    const double a = std::numbers::pi * (3 - std::sqrt(5.0)) * i;
+    pc.xyz.insert(pc.xyz.end(), {static_cast<float>(R * r * std::cos(a)), static_cast<float>(R * r * std::sin(a)),
+                                 static_cast<float>(R * z)});
+  }
+  return pc;
+}
+
 }  // namespace
 
 TEST_CASE("quantizer on a plane: every odd vertex gets the nearest integer to its offset over the step") {
@@ -122,14 +135,7 @@ TEST_CASE("quantizer and sampler on a sphere: samples match the exact distance a
   // |p + t n| = R nearest to zero.
   const TriangleMesh control = test::icosahedron();
   const double R = std::sqrt(double{control.positions[0]} * control.positions[0] + double{control.positions[1]} * control.positions[1]);
-  PointCloud pc;
-  const size_t count = 60000;
-  for (size_t i = 0; i < count; ++i) {
-    const double z = 1 - (2 * i + 1.0) / count, r = std::sqrt(1 - z * z);
-    const double a = std::numbers::pi * (3 - std::sqrt(5.0)) * i;
-    pc.xyz.insert(pc.xyz.end(), {static_cast<float>(R * r * std::cos(a)), static_cast<float>(R * r * std::sin(a)),
-                                 static_cast<float>(R * z)});
-  }
+  const PointCloud pc = fibonacci_sphere(R, 60000);
   const PointIndex index(pc);
   LevelEncodeOptions o;
   o.levels = 3;
@@ -176,14 +182,7 @@ TEST_CASE("quantizer past the points' density: a dead zone of 1.5 steps, so no l
   // and 480 odd vertices (plain rounding), level 4 has 1920 (dead zone).
   const TriangleMesh control = test::icosahedron();
   const double R = std::sqrt(double{control.positions[0]} * control.positions[0] + double{control.positions[1]} * control.positions[1]);
-  PointCloud pc;
-  const size_t count = 600;
-  for (size_t i = 0; i < count; ++i) {
-    const double z = 1 - (2 * i + 1.0) / count, r = std::sqrt(1 - z * z);
-    const double a = std::numbers::pi * (3 - std::sqrt(5.0)) * i;
-    pc.xyz.insert(pc.xyz.end(), {static_cast<float>(R * r * std::cos(a)), static_cast<float>(R * r * std::sin(a)),
-                                 static_cast<float>(R * z)});
-  }
+  const PointCloud pc = fibonacci_sphere(R, 600);
   const PointIndex index(pc);
   LevelEncodeOptions o;
   o.levels = 4;

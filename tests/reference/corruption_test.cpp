@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "dbss/decoder/progressive.h"
+#include "project_decode.h"
 #include "reference.h"
 
 namespace {
@@ -34,26 +35,11 @@ Outcome reference(std::span<const uint8_t> bytes) {
   return out;
 }
 
-// The project's reader (dbss/format/reader.h) behind its progressive
-// decoder, which adds the control mesh's checks (bad_mesh, Draco's
-// compression errors) that the container reader leaves to it.
+// The project's pipeline, in the reference's terms.
 Outcome project(std::span<const uint8_t> bytes) {
-  Outcome out;
-  dbss::DecoderOptions options;
-  options.threads = 1;
-  dbss::ProgressiveDecoder d(options);
-  dbss::Status s = d.feed(bytes);
-  if (s.ok()) s = d.finish();
-  if (!s.ok()) out.error = dbss::error_code_name(s.code());
-  for (int l = 0; l <= d.ready_level(); ++l) {
-    auto v = d.decode(static_cast<uint32_t>(l));
-    if (!v.ok()) {
-      if (out.error.empty()) out.error = dbss::error_code_name(v.status().code());
-      break;
-    }
-    out.positions.emplace_back(v.value().positions.begin(), v.value().positions.end());
-    out.triangles.emplace_back(v.value().triangles.begin(), v.value().triangles.end());
-  }
+  const dbss::test::ProjectDecode p = dbss::test::project_decode(bytes);
+  Outcome out{p.error, {}, {}};
+  for (const auto& m : p.levels) out.positions.push_back(m.positions), out.triangles.push_back(m.triangles);
   return out;
 }
 

@@ -14,6 +14,7 @@
 #include "../shapes.h"
 #include "dbss/decoder/level_refiner.h"
 #include "dbss/decoder/progressive.h"
+#include "project_decode.h"
 #include "reference.h"
 
 namespace {
@@ -41,32 +42,6 @@ dbss_ref::Mesh to_ref(const dbss::TriangleMesh& m) { return {m.positions, m.tria
 
 bool same_bits(std::span<const float> a, std::span<const float> b) {
   return a.size() == b.size() && std::memcmp(a.data(), b.data(), 4 * a.size()) == 0;
-}
-
-// The project's whole pipeline on a file: the error code name ("" if ok)
-// and every level it verified.
-struct ProjectDecode {
-  std::string error;
-  std::vector<dbss::TriangleMesh> levels;
-};
-
-ProjectDecode project_decode(std::span<const uint8_t> bytes) {
-  ProjectDecode out;
-  dbss::DecoderOptions options;
-  options.threads = 1;
-  dbss::ProgressiveDecoder d(options);
-  dbss::Status s = d.feed(bytes);
-  if (s.ok()) s = d.finish();
-  if (!s.ok()) out.error = dbss::error_code_name(s.code());
-  for (int l = 0; l <= d.ready_level(); ++l) {
-    auto v = d.decode(static_cast<uint32_t>(l));
-    if (!v.ok()) {
-      if (out.error.empty()) out.error = dbss::error_code_name(v.status().code());
-      break;
-    }
-    out.levels.push_back(v.value().copy());
-  }
-  return out;
 }
 
 }  // namespace
@@ -99,7 +74,7 @@ TEST_CASE("golden files give the progressive decoder's bits at every level") {
     INFO(name);
     const auto bytes = read_bytes(kDir + name + ".dbss");
     const dbss_ref::Decoded ref = dbss_ref::decode(bytes);
-    const ProjectDecode project = project_decode(bytes);
+    const dbss::test::ProjectDecode project = dbss::test::project_decode(bytes);
     REQUIRE(ref.error.empty());
     REQUIRE(project.error.empty());
     REQUIRE(ref.levels.size() == project.levels.size());
