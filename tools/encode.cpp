@@ -180,16 +180,15 @@ int run_encode(const std::vector<std::string_view>& args) {
   row("QEM simplification", st.seconds.simplify, &st.simplified, "");
   row("projection", st.seconds.project, &st.control, std::to_string(st.projection_skipped) + " vertices kept off the points");
   row("Draco", e.seconds.draco, &e.control, std::to_string(e.contents.control_mesh.size()) + " bytes of Draco, " + std::to_string(e.control_bits) + "-bit positions");
-  row("displacement levels", e.seconds.levels, nullptr,
-      std::to_string(e.level_count) + " level(s)" +
-          (options.levels == kAutoLevels
-               ? std::string(" (auto: ") +
-                     (e.level_count < format::kMaxLevelsInPractice || e.levels.positions.back().size() / 3 > e.points.size()
-                          ? "level " + std::to_string(e.level_count) + " is the first with more vertices than the " +
-                                std::to_string(e.points.size()) + " points"
-                          : "the most levels --levels allows") +
-                     ")"
-               : ""));
+  // Under auto the count stops at the first level denser than the points,
+  // unless the level limit came first.
+  std::string levels_note = std::to_string(e.level_count) + " level(s)";
+  if (options.levels == kAutoLevels)
+    levels_note += e.levels.positions.back().size() / 3 > e.points.size()
+                       ? " (auto: level " + std::to_string(e.level_count) + " is the first with more vertices than the " +
+                             std::to_string(e.points.size()) + " points)"
+                       : " (auto: the most levels --levels allows)";
+  row("displacement levels", e.seconds.levels, nullptr, levels_note);
   row("self-check", e.seconds.check, nullptr, std::to_string(e.check.warnings.size()) + " warning(s)");
   row("container", e.seconds.serialize, nullptr, std::to_string(e.bytes.size()) + " bytes");
   if (!dump.empty()) std::printf("stages written to %s/\n", dump.c_str());

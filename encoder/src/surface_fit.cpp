@@ -72,21 +72,21 @@ SurfaceFit fit_height(const PointIndex& index, const double p[3], const double n
   if (used < 4) return out;
   // The quadric where the points are enough to pin its curvature terms.
   const bool quadric = used >= 12;
-  const std::vector<double> gauss = s.w;
+  s.gauss = s.w;
   Eigen::Matrix<double, 6, 1> c;
   if (!solve(s, quadric, c)) return out;
   for (int round = 0; round < 2; ++round) {
     // Robust scale: the median absolute residual; points beyond 4.685 of it
     // (Tukey's constant for 95% efficiency on Gaussian noise) get no weight.
-    std::vector<double> r(used);
-    for (size_t i = 0; i < used; ++i) r[i] = std::abs(residual(s, i, c));
-    std::vector<double> sorted = r;
-    std::nth_element(sorted.begin(), sorted.begin() + used / 2, sorted.end());
-    const double scale = 1.4826 * sorted[used / 2];
+    s.residual.resize(used);
+    for (size_t i = 0; i < used; ++i) s.residual[i] = std::abs(residual(s, i, c));
+    s.sorted = s.residual;
+    std::nth_element(s.sorted.begin(), s.sorted.begin() + used / 2, s.sorted.end());
+    const double scale = 1.4826 * s.sorted[used / 2];
     if (!(scale > 1e-12 * radius)) break;  // exact fit: nothing to reweight
     for (size_t i = 0; i < used; ++i) {
-      const double x = r[i] / (4.685 * scale);
-      s.w[i] = x < 1 ? gauss[i] * (1 - x * x) * (1 - x * x) : 0;
+      const double x = s.residual[i] / (4.685 * scale);
+      s.w[i] = x < 1 ? s.gauss[i] * (1 - x * x) * (1 - x * x) : 0;
     }
     Eigen::Matrix<double, 6, 1> next;
     if (!solve(s, quadric, next)) break;

@@ -17,6 +17,7 @@ struct FitScratch {
   std::vector<uint32_t> index;
   std::vector<float> dist2;
   std::vector<double> u, v, h, w;  // the kept points in the line's frame, their weights
+  std::vector<double> gauss, residual, sorted;  // the robust rounds' working arrays
 };
 
 struct SurfaceFit {
