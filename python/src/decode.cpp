@@ -76,7 +76,10 @@ class Decoder {
  public:
   int push(const py::buffer& b) {
     Bytes bytes(b);
-    const auto [s, ready] = locked([&] { return std::pair(d_.feed(bytes.span()), d_.ready_level()); });
+    const auto [s, ready] = locked([&] {
+      Status fed = d_.feed(bytes.span());  // before ready_level(): arguments have no order
+      return std::pair(std::move(fed), d_.ready_level());
+    });
     if (!s.ok()) throw_status(s);
     return ready;
   }
