@@ -35,7 +35,8 @@ const char* coding_name(format::DisplacementCoding c) {
 InfoReport inspect_bytes(std::span<const uint8_t> bytes, bool hashes, const format::Limits& limits) {
   DecoderOptions options;
   options.limits = limits;
-  InfoReport rep{ProgressiveDecoder(options)};
+  InfoReport rep;
+  rep.decoder = ProgressiveDecoder(options);
   rep.file_bytes = bytes.size();
   ProgressiveDecoder& d = rep.decoder;
   d.feed(bytes);
