@@ -5,7 +5,8 @@
 
 Without --scheduler a local cluster runs on this machine (--workers
 processes, one thread each); with it, the tasks go to a running Dask
-scheduler whose workers can ``import dbss``.  INPUT_DIR is searched
+scheduler whose workers can ``import dbss`` and see both folders at the
+same paths.  INPUT_DIR is searched
 recursively for .ply, .obj, .off, .xyz and .stl files; INPUT_DIR/a/b.ply is
 encoded to OUTPUT_DIR/a/b.dbss exactly as ``dbss encode INPUT_DIR/a/b.ply -o
 OUTPUT_DIR/a/b.dbss [encode options]`` would, and written atomically.  A
@@ -139,6 +140,8 @@ def parse_args(argv):
         else:
             p.add_argument(flag, dest=key, action="store_true", default=None)
     args = p.parse_args(argv)
+    # Absolute, so workers started elsewhere find the files (on a shared file system).
+    args.input_dir, args.output_dir = args.input_dir.absolute(), args.output_dir.absolute()
     options = {key: getattr(args, key) for _, key, _ in ENCODE_FLAGS if getattr(args, key) is not None}
     return p, args, options
 
