@@ -18,9 +18,14 @@ fi
 jobs=$(nproc 2>/dev/null || echo 2)
 
 echo "== gcc, Release =="
-cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_COMPILER=g++ -DDBSS_WERROR=ON
+cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_COMPILER=g++ -DDBSS_WERROR=ON -DDBSS_BUILD_PYTHON=ON
 cmake --build build -j "$jobs"
 ctest --test-dir build --output-on-failure -j "$jobs" | tee build/ctest.log
+
+# The Python module (built above into build/python) against the command
+# line it was built with, and dbss.batch on a two-worker Dask cluster.
+echo "== python =="
+PYTHONPATH="$PWD/build/python" /usr/bin/python3 -m pytest -q python/tests
 
 # Format, decoder and io alone, where Eigen and nanoflann cannot be reached.
 echo "== decoder-only build =="
@@ -63,5 +68,5 @@ for log in build/ctest.log build-asan/ctest.log; do
   n=$(sed -n 's/^100% tests passed, 0 tests failed out of \([0-9]*\)$/\1/p' "$log")
   passed=$((passed + ${n:-0}))
 done
-echo "test.sh: gcc and clang+sanitizer suites, the decoder-only build, golden files at -O0 and clang -O3, fuzzing: all clean"
+echo "test.sh: gcc and clang+sanitizer suites, the Python tests, the decoder-only build, golden files at -O0 and clang -O3, fuzzing: all clean"
 echo "${passed} passed, 0 failed"

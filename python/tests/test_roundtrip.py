@@ -1,0 +1,98 @@
+"""The module gives the command line's bytes and floats, bit for bit."""
+import json
+
+import numpy as np
+import pytest
+
+import dbss
+from conftest import fnv1a64, read_ply
+
+
+def test_encode_file_equals_the_command(cli, torus_xyz, encoded, tmp_path):
+    out = tmp_path / "py.dbss"
+    stats = dbss.encode_file(torus_xyz, out, levels=2)
+    assert out.read_bytes() == encoded[1]
+    assert stats["bytes"] == len(encoded[1])
+
+
+def test_encode_array_equals_the_command(torus_points, encoded):
+    # float64 from the text, rounded to float32 as the command reads it.
+    data = dbss.encode(torus_points, levels=2, source_name="double-torus.xyz")
+    assert data == encoded[1]
+    assert dbss.encode(torus_points.astype(np.float32), levels=2, source_name="double-torus.xyz") == encoded[1]
+
+
+def test_every_option_means_the_commands_flag(cli, torus_xyz, torus_points, tmp_path):
+    flags = ["--levels", 1, "--grid", 30, "--error", 3e-4, "--effort", 5, "--control-faces", 200,
+             "--control-bits", 14, "--surface", "closed", "--keep-outliers"]
+    out = tmp_path / "cli.dbss"
+    cli("encode", torus_xyz, "-o", out, *flags)
+    data = dbss.encode(torus_points, levels=1, grid=30, error=3e-4, effort=5, control_faces=200, control_bits=14,
+                       surface="closed", keep_outliers=True, source_name=torus_xyz.name)
+    assert data == out.read_bytes()
+    step = dbss.encode(torus_points, levels=1, step=0.002, source_name=torus_xyz.name)
+    cli("encode", torus_xyz, "-o", out, "--levels", 1, "--step", 0.002)
+    assert step == out.read_bytes()
+
+
+def test_decode_equals_the_command_at_every_level(cli, encoded, tmp_path):
+    path, data = encoded
+    hashes = cli("info", path, "--hashes").stdout.decode().splitlines()
+    assert len(hashes) == 3
+    for level in range(3):
+        v, f = dbss.decode(data, level)
+        assert v.dtype == np.float32 and v.shape[1] == 3 and f.dtype == np.uint32 and f.shape[1] == 3
+        assert hashes[level] == f"level {level} vertices {len(v)} triangles {len(f)} fnv1a64 {fnv1a64(v)}"
+        ply = tmp_path / f"l{level}.ply"
+        cli("decode", path, "-o", ply, "--level", level)
+        cv, cf = read_ply(ply)
+        assert np.array_equal(v.view(np.uint32), cv.view(np.uint32)) and np.array_equal(f, cf)
+    finest_v, _ = dbss.decode(data)
+    assert np.array_equal(finest_v, dbss.decode(data, 2)[0])
+
+
+def test_info_has_the_fields_of_info_json(cli, encoded):
+    path, data = encoded
+    for flags, hashes in (([], False), (["--hashes"], True)):
+        want = json.loads(cli("info", path, "--json", *flags).stdout)
+        got = dbss.info(data, hashes=hashes)
+        assert got.pop("file") is None and want.pop("file") == str(path)
+        assert got == want
+    assert dbss.info(path) == json.loads(cli("info", path, "--json").stdout)
+
+
+def test_stats_per_stage_and_level(torus_points, encoded):
+    data, stats = dbss.encode(torus_points, levels=2, source_name="double-torus.xyz", return_stats=True)
+    assert data == encoded[1]
+    info = dbss.info(data)
+    assert stats["bytes"] == len(data) == info["bytes"]
+    assert stats["level_count"] == 2 and len(stats["levels"]) == 3
+    for row, want in zip(stats["levels"], info["level_table"]):
+        assert row["level"] == want["level"] and row["vertices"] == want["vertices"]
+        if row["level"] > 0:
+            assert row["bytes"] == want["bytes"] and row["odd"] == want["odd"] and row["coding"] == want["coding"]
+    assert stats["stages"]["draco"]["triangles"] == info["control"]["triangles"]
+    assert stats["stages"]["triangulation"]["genus"] == 2
+    for stage in ("outliers", "choose_grid", "cell_carving", "triangulation", "shrink_wrapping", "simplification",
+                  "projection", "draco", "levels", "self_check", "container"):
+        assert stats["stages"][stage]["seconds"] >= 0
+
+
+def test_decoder_fed_one_byte_at_a_time(encoded):
+    data = encoded[1]
+    d = dbss.Decoder()
+    assert d.levels_ready == -1 and d.levels is None
+    seen = []
+    for i in range(len(data)):
+        seen.append(d.push(data[i:i + 1]))
+    d.finish()
+    assert d.error is None and d.levels == 2
+    assert seen == sorted(seen) and seen[-1] == 2 and set(seen) == {-1, 0, 1, 2}
+    # Each level becomes ready exactly when the bytes that hold it have all arrived.
+    for level in range(3):
+        n = seen.index(level) + 1
+        assert dbss.Decoder().push(data[:n]) == level and dbss.Decoder().push(data[:n - 1]) == level - 1
+    for level in (2, 0, 1):
+        v, f = d.level(level)
+        wv, wf = dbss.decode(data, level)
+        assert np.array_equal(v.view(np.uint32), wv.view(np.uint32)) and np.array_equal(f, wf)
