@@ -51,7 +51,6 @@ fetch_sources() {
 [ -f "$src/zstd/lib/zstd.h" ] && [ -f "$src/draco/CMakeLists.txt" ] || fetch_sources
 
 export NODE_PATH=/usr/share/nodejs  # em++'s own JavaScript tools
-export EM_CACHE=${EM_CACHE:-}       # Debian's prebuilt system libraries
 cflags=(-O3 -ffp-contract=off -fno-fast-math)
 
 # Runs "$@" in the background, at most $jobs at once; wait_all fails when any did.
