@@ -52,7 +52,8 @@ before(async () => {
   const dc = bytes.slice();
   dc[ctrl.offset + 12 + 20] ^= 0x01;
   writeFileSync(damagedCtrl, dc);
-  files = { '/example.dbss': example, '/cut.dbss': cut, '/damaged-level2.dbss': damaged, '/damaged-control.dbss': damagedCtrl };
+  files = { '/example.dbss': example, '/cut.dbss': cut, '/damaged-level2.dbss': damaged, '/damaged-control.dbss': damagedCtrl,
+    '/garbage-control.dbss': join(repo, 'tests/format/data/garbage-control.dbss') };
   tocOf = { ctrl, levl, size: bytes.length };
   const mounts = repoMounts(repo, buildDir);
   slow = await startServer({ rate: RATE, piece: 512, files, mounts });
@@ -119,6 +120,14 @@ test('a damaged control mesh shows its error and draws nothing', async () => {
   assert.equal(state.error?.codeName, 'checksum_mismatch');
   assert.deepEqual(state.levels, []);
   assert.equal(state.shown, -1);
+  await page.close();
+});
+
+test('a control mesh that is not Draco (its CRC holds) shows compression and draws nothing', async () => {
+  const { page, state } = await view(fast, 'file=/garbage-control.dbss');
+  assert.equal(state.error?.codeName, 'compression');
+  assert.deepEqual(state.levels, []);
+  assert.match(await page.textContent('#status'), /compression/);
   await page.close();
 });
 

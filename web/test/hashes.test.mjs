@@ -43,8 +43,8 @@ test('the spec test vector hashes to the values spec/decoding.md lists', () => {
   assert.equal(out.stdout, expected);
 });
 
-test('container fuzz corpus (cut, damaged, no-CRC files): same lines and verdict as native', () => {
-  for (const f of filesIn('fuzz/corpus/container', '.dbss')) compare(f);
+test('container fuzz corpus (cut, damaged, no-CRC files) and a garbage control mesh: same lines and verdict as native', () => {
+  for (const f of [...filesIn('fuzz/corpus/container', '.dbss'), ...filesIn('tests/format/data', '.dbss')]) compare(f);
 });
 
 test('freshly encoded shipped examples: same lines as native', { timeout: 600000 }, () => {

@@ -132,3 +132,13 @@ test('a prefix up to level L\'s chunk (a Range request) gives exactly levels 0..
   }
   head.dispose();
 });
+
+test('a control mesh that passes its CRC but is not Draco: compression error from level(0), then nothing ready', () => {
+  const bytes = new Uint8Array(readFileSync(`${repo}/tests/format/data/garbage-control.dbss`));
+  const d = new StreamingDecoder(module);
+  d.push(bytes);
+  assert.ok(d.levelsReady() >= 1);  // its bytes are verified; the decoder has not looked inside yet
+  assert.throws(() => d.level(0), (e) => e instanceof DbssError && e.codeName === 'compression' && e.code === 10);
+  assert.equal(d.levelsReady(), 0);  // a decoder-side error voids every level
+  d.dispose();
+});
