@@ -2,16 +2,17 @@
 // Browser decoding benchmark: dbss WASM vs draco3d WASM in headless
 // Chromium, levels 3-5 of the shipped example encoded with 5 levels.
 //
-//   node web/bench/run.mjs [--simd]
+//   node web/bench/run.mjs [--simd] [--file FILE.dbss]
 //
-// Makes its files in build-web/bench/ with build/bin/dbss (encode, decode
+// FILE (default: the shipped example encoded with 5 levels) needs levels
+// 3-5.  Makes its files in build-web/bench/ with build/bin/dbss (encode, decode
 // --level L to PLY) and Debian's draco_encoder (its defaults), serves them,
 // and prints a table and the gzipped sizes of what a page ships.  --simd
 // also times the -msimd128 build (scripts/web-build.sh with DBSS_WASM_SIMD=1
 // into build-web-simd/) after checking that it gives the same hashes.
 import { spawnSync } from 'node:child_process';
-import { existsSync, mkdirSync, readFileSync } from 'node:fs';
-import { join } from 'node:path';
+import { existsSync, mkdirSync, readFileSync, statSync } from 'node:fs';
+import { basename, dirname, join, resolve } from 'node:path';
 import { gzipSync } from 'node:zlib';
 import { fileURLToPath } from 'node:url';
 import { chromium } from 'playwright-core';
@@ -30,12 +31,14 @@ function run(cmd, args) {
   return r.stdout;
 }
 
-const file = join(work, 'double-torus-5.dbss');
-if (!existsSync(file)) run(dbss, ['encode', join(repo, 'examples/double-torus.xyz'), '-o', file, '--levels', '5']);
+const fileArg = process.argv.indexOf('--file');
+const file = fileArg > 0 ? resolve(process.argv[fileArg + 1]) : join(work, 'double-torus-5.dbss');
+if (fileArg < 0 && !existsSync(file)) run(dbss, ['encode', join(repo, 'examples/double-torus.xyz'), '-o', file, '--levels', '5']);
+const stem = basename(file, '.dbss');
 const native = run(dbss, ['info', file, '--hashes']).trim().split('\n').map((l) => l.split(' ').pop());
 for (const L of levels) {
-  const ply = join(work, `level${L}.ply`), drc = join(work, `level${L}.drc`);
-  if (!existsSync(drc)) {
+  const ply = join(work, `${stem}-level${L}.ply`), drc = join(work, `${stem}-level${L}.drc`);
+  if (!existsSync(drc) || statSync(drc).mtimeMs < statSync(file).mtimeMs) {
     run(dbss, ['decode', file, '--level', String(L), '-o', ply]);
     run('draco_encoder', ['-i', ply, '-o', drc]);
   }
@@ -48,12 +51,13 @@ if (simd) {
   if (r.status !== 0) throw new Error('the SIMD build failed');
 }
 
-const mounts = { ...repoMounts(repo, buildDir), '/bench-files/': work, '/simd/': join(repo, 'build-web-simd/dist') };
+const mounts = { ...repoMounts(repo, buildDir), '/bench-files/': work, '/bench-input/': dirname(file),
+  '/simd/': join(repo, 'build-web-simd/dist') };
 const { server, url } = await startServer({ mounts });
 const browser = await chromium.launch({ executablePath: process.env.DBSS_CHROMIUM ?? '/usr/bin/chromium', args: ['--no-sandbox'] });
 async function measure(wasm) {
   const page = await browser.newPage();
-  const q = new URLSearchParams({ dbss: '/bench-files/double-torus-5.dbss', drc: '/bench-files/level{L}.drc', levels: levels.join(',') });
+  const q = new URLSearchParams({ dbss: `/bench-input/${basename(file)}`, drc: `/bench-files/${stem}-level{L}.drc`, levels: levels.join(',') });
   if (wasm) q.set('wasm', wasm);
   await page.goto(`${url}/web/bench/?${q}`);
   await page.waitForFunction(() => window.benchResult, null, { timeout: 300000 });
