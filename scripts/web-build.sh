@@ -18,6 +18,8 @@ out=$(cd "$out" && pwd)
 jobs=$(nproc 2>/dev/null || echo 2)
 
 bash scripts/install-deps.sh web
+t0=$SECONDS
+phase() { echo "web-build: $1 ($((SECONDS - t0)) s so far)"; }
 
 # --- Debian source packages of zstd and Draco -------------------------------
 # A private apt configuration with deb-src entries for the configured Debian
@@ -48,7 +50,7 @@ fetch_sources() {
   rm -rf "$src/zstd" "$src/draco"
   (cd "$src" && dpkg-source -x libzstd_*.dsc zstd >/dev/null 2>&1 && dpkg-source -x draco_*.dsc draco >/dev/null 2>&1)
 }
-[ -f "$src/zstd/lib/zstd.h" ] && [ -f "$src/draco/CMakeLists.txt" ] || fetch_sources
+[ -f "$src/zstd/lib/zstd.h" ] && [ -f "$src/draco/CMakeLists.txt" ] || { fetch_sources; phase "sources fetched"; }
 
 export NODE_PATH=/usr/share/nodejs  # em++'s own JavaScript tools
 cflags=(-O3 -ffp-contract=off -fno-fast-math)
@@ -81,6 +83,7 @@ if [ ! -f "$zlib" ]; then
   done
   wait_all
   emar rcs "$zlib.tmp" "${objs[@]}" && mv "$zlib.tmp" "$zlib"
+  phase "zstd built"
 fi
 
 # --- Draco: the decoder's object libraries only -------------------------------
@@ -98,6 +101,7 @@ if [ ! -f "$dlib" ]; then
   cmake --build "$out/draco" -j "$jobs" --target "${draco_targets[@]}"
   mapfile -t dobjs < <(for t in "${draco_targets[@]}"; do [ -d "$out/draco/CMakeFiles/$t.dir" ] && find "$out/draco/CMakeFiles/$t.dir" -name '*.o'; done; true)
   emar rcs "$dlib.tmp" "${dobjs[@]}" && mv "$dlib.tmp" "$dlib"
+  phase "Draco built"
 fi
 
 # --- dbss: the native build's format + decoder sources, and the glue ----------
@@ -111,10 +115,12 @@ cxxflags=(-std=c++20 "${cflags[@]}" -Wall -Wextra -Werror -fno-math-errno)
 # The decoder stays within emscripten 3.1.6's libc++ 13 (no std::ranges
 # algorithms, std::format, std::bit_cast ...): a syntax check of every file.
 echo "web-build: em++ -fsyntax-only over format/ and decoder/"
-for f in "${dbss_sources[@]}"; do
-  spawn em++ "${cxxflags[@]}" "${includes[@]}" -fsyntax-only "$f"
-done
+# Two calls of several files each: em++'s start-up costs more than a file.
+half=$(( (${#dbss_sources[@]} + 1) / 2 ))
+spawn em++ "${cxxflags[@]}" "${includes[@]}" -fsyntax-only "${dbss_sources[@]:0:$half}"
+spawn em++ "${cxxflags[@]}" "${includes[@]}" -fsyntax-only "${dbss_sources[@]:$half}"
 wait_all
+phase "syntax check passed"
 
 echo "web-build: dbss format + decoder for wasm"
 mkdir -p "$out/obj/dbss"
@@ -138,10 +144,11 @@ em++ "${link[@]}" -sEXPORT_ES6=1 -sENVIRONMENT=web,worker -o "$out/dist/dbss_was
 # Node: CommonJS (3.1.6's ES6 output calls require()), compiled synchronously
 # (node 20 cannot await the asynchronous compilation here).
 em++ "${link[@]}" -sENVIRONMENT=node -sWASM_ASYNC_COMPILATION=0 -o "$out/node/dbss_wasm.cjs"
+phase "dbss linked"
 echo "web-build: $(stat -c %s "$out/dist/dbss_wasm.wasm") bytes of wasm ($(gzip -9c "$out/dist/dbss_wasm.wasm" | wc -c) gzipped)"
 
 # --- npm packages (three.js, playwright-core, draco3d) ------------------------
 if [ -f web/package-lock.json ]; then
   (cd web && npm ci --no-audit --no-fund --loglevel=error)
 fi
-echo "web-build: done: $out/dist (web), $out/node (node)"
+echo "web-build: done in $((SECONDS - t0)) s: $out/dist (web), $out/node (node)"
