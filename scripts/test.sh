@@ -27,7 +27,7 @@ ctest --test-dir build --output-on-failure -j "$jobs" | tee build/ctest.log
 # must hash as build/bin/dbss's does.
 echo "== web =="
 bash scripts/web-build.sh build-web
-DBSS_BIN=build/bin/dbss bash web/test/run.sh
+DBSS_BIN="$PWD/build/bin/dbss" bash web/test/run.sh
 
 # Format, decoder and io alone, where Eigen and nanoflann cannot be reached.
 echo "== decoder-only build =="
