@@ -16,6 +16,17 @@ packages=(
 )
 # Optional, for scripts/plot-rd.py's plots: apt-get install python3-matplotlib
 
+# `install-deps.sh web`: the WebAssembly build and the browser tests
+# (scripts/web-build.sh) also need emscripten (with its prebuilt system
+# libraries), Debian's Chromium, dpkg-dev for `apt-get source`, and Draco's
+# command-line tools for the browser benchmark.  Node.js
+# with npm is taken from PATH when present (Debian's npm package conflicts
+# with a NodeSource node); otherwise Debian's.
+if [ "${1:-}" = web ]; then
+  packages=(emscripten chromium dpkg-dev xz-utils draco)  # draco: draco_encoder for web/bench/
+  command -v node >/dev/null && command -v npm >/dev/null || packages+=(nodejs npm)
+fi
+
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -27,6 +27,13 @@ ctest --test-dir build --output-on-failure -j "$jobs" | tee build/ctest.log
 echo "== python =="
 PYTHONPATH="$PWD/build/python" /usr/bin/python3 -m pytest -q python/tests
 
+# The decoder compiled to WebAssembly from the same sources, its JavaScript
+# API, and the viewer in headless Chromium (web/, issue 17): every level
+# must hash as build/bin/dbss's does.
+echo "== web =="
+bash scripts/web-build.sh build-web
+DBSS_BIN="$PWD/build/bin/dbss" bash web/test/run.sh
+
 # Format, decoder and io alone, where Eigen and nanoflann cannot be reached.
 echo "== decoder-only build =="
 bash scripts/decoder-only.sh build-decoder-only
@@ -68,5 +75,5 @@ for log in build/ctest.log build-asan/ctest.log; do
   n=$(sed -n 's/^100% tests passed, 0 tests failed out of \([0-9]*\)$/\1/p' "$log")
   passed=$((passed + ${n:-0}))
 done
-echo "test.sh: gcc and clang+sanitizer suites, the Python tests, the decoder-only build, golden files at -O0 and clang -O3, fuzzing: all clean"
+echo "test.sh: gcc and clang+sanitizer suites, the Python tests, the web build and its browser tests, the decoder-only build, golden files at -O0 and clang -O3, fuzzing: all clean"
 echo "${passed} passed, 0 failed"

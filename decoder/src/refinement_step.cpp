@@ -135,7 +135,10 @@ void Refiner::step_impl(const int32_t* q, const OddChooser* choose, int32_t* cho
   if (per_half) per_half[9 * size_t{t.face_count}] = 0;  // slack (inside the 12 per face)
   parallel(t.face_count, threads, [&](uint32_t fb, uint32_t fe) {
     kernels_.stencil_points(t, p, fb, fe, per_half ? nullptr : out_odd, per_half);
-    const size_t vb = size_t{evens} * fb / t.face_count, ve = size_t{evens} * fe / t.face_count;
+    // In 64 bits: where size_t has 32 (WebAssembly), evens * fe overflows it
+    // from about 65,000 evens on (the web build copied too few evens).
+    const size_t vb = static_cast<size_t>(uint64_t{evens} * fb / t.face_count);
+    const size_t ve = static_cast<size_t>(uint64_t{evens} * fe / t.face_count);
     std::memcpy(out + 3 * vb, p + 3 * vb, sizeof(float) * 3 * (ve - vb));
   });
   // Pass 2: normals from the undisplaced level, and the displacements.

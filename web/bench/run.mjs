@@ -1,0 +1,103 @@
+#!/usr/bin/env node
+// Browser decoding benchmark: dbss WASM vs draco3d WASM in headless
+// Chromium, levels 3-5 of the shipped example encoded with 5 levels.
+//
+//   node web/bench/run.mjs [--simd] [--file FILE.dbss]
+//
+// FILE (default: the shipped example encoded with 5 levels) needs levels
+// 3-5.  Makes its files in build-web/bench/ with build/bin/dbss (encode, decode
+// --level L to PLY) and Debian's draco_encoder (its defaults), serves them,
+// and prints a table and the gzipped sizes of what a page ships.  --simd
+// also times the -msimd128 build (scripts/web-build.sh with DBSS_WASM_SIMD=1
+// into build-web-simd/) after checking that it gives the same hashes.
+import { spawnSync } from 'node:child_process';
+import { existsSync, mkdirSync, readFileSync, statSync } from 'node:fs';
+import { basename, dirname, join, resolve } from 'node:path';
+import { gzipSync } from 'node:zlib';
+import { fileURLToPath } from 'node:url';
+import { chromium } from 'playwright-core';
+import { startServer, repoMounts } from '../tools/serve.mjs';
+
+const repo = fileURLToPath(new URL('../..', import.meta.url));
+const buildDir = join(repo, 'build-web');
+const dbss = process.env.DBSS_BIN ?? join(repo, 'build/bin/dbss');
+const work = join(buildDir, 'bench');
+const levels = [3, 4, 5];
+mkdirSync(work, { recursive: true });
+
+function run(cmd, args) {
+  const r = spawnSync(cmd, args, { encoding: 'utf8' });
+  if (r.status !== 0) throw new Error(`${cmd} ${args.join(' ')}: ${r.error ?? r.stderr}`);
+  return r.stdout;
+}
+
+const fileArg = process.argv.indexOf('--file');
+const file = fileArg > 0 ? resolve(process.argv[fileArg + 1]) : join(work, 'double-torus-5.dbss');
+if (fileArg < 0 && !existsSync(file)) run(dbss, ['encode', join(repo, 'examples/double-torus.xyz'), '-o', file, '--levels', '5']);
+const stem = basename(file, '.dbss');
+const native = run(dbss, ['info', file, '--hashes']).trim().split('\n').map((l) => l.split(' ').pop());
+for (const L of levels) {
+  const ply = join(work, `${stem}-level${L}.ply`), drc = join(work, `${stem}-level${L}.drc`);
+  if (!existsSync(drc) || statSync(drc).mtimeMs < statSync(file).mtimeMs) {
+    run(dbss, ['decode', file, '--level', String(L), '-o', ply]);
+    run('draco_encoder', ['-i', ply, '-o', drc]);
+  }
+}
+
+const simd = process.argv.includes('--simd');
+if (simd) {
+  const r = spawnSync('bash', [join(repo, 'scripts/web-build.sh'), join(repo, 'build-web-simd')], {
+    stdio: ['ignore', 'ignore', 'inherit'], env: { ...process.env, DBSS_WASM_SIMD: '1' } });
+  if (r.status !== 0) throw new Error('the SIMD build failed');
+}
+
+const mounts = { ...repoMounts(repo, buildDir), '/bench-files/': work, '/bench-input/': dirname(file),
+  '/simd/': join(repo, 'build-web-simd/dist') };
+const { server, url } = await startServer({ mounts });
+const browser = await chromium.launch({ executablePath: process.env.DBSS_CHROMIUM ?? '/usr/bin/chromium', args: ['--no-sandbox'] });
+async function measure(wasm) {
+  const page = await browser.newPage();
+  const q = new URLSearchParams({ dbss: `/bench-input/${basename(file)}`, drc: `/bench-files/${stem}-level{L}.drc`, levels: levels.join(',') });
+  if (wasm) q.set('wasm', wasm);
+  await page.goto(`${url}/web/bench/?${q}`);
+  await page.waitForFunction(() => window.benchResult, null, { timeout: 300000 });
+  const res = await page.evaluate(() => window.benchResult);
+  await page.close();
+  if (res.error) throw new Error(res.error);
+  for (const r of res.rows) {
+    if (r.hash !== native[r.level]) throw new Error(`level ${r.level}: browser hash ${r.hash}, native ${native[r.level]}`);
+    if (r.dracoVertices !== r.vertices || r.dracoTriangles !== r.triangles) throw new Error(`level ${r.level}: Draco's mesh has other counts`);
+  }
+  return res;
+}
+
+const res = await measure(null);
+const resSimd = simd ? await measure('/simd/dbss_wasm.mjs') : null;
+await browser.close();
+server.close();
+
+const pad = (s, n) => String(s).padStart(n);
+console.log(`${res.userAgent.match(/Chrome\/[\d.]+/)?.[0] ?? 'Chromium'}, headless, one thread; ${file.replace(repo, '')}; best of repetitions`);
+console.log(`level  triangles |  dbss bytes  dbss ms | draco bytes  draco3d ms | draco3d / dbss${simd ? ' | dbss SIMD ms  ratio' : ''}`);
+res.rows.forEach((r, i) => {
+  let line = `${pad(r.level, 5)} ${pad(r.triangles, 10)} | ${pad(r.dbssBytes, 11)} ${pad(r.dbssMs.toFixed(2), 8)} | ${pad(r.dracoBytes, 11)} ${pad(r.dracoMs.toFixed(2), 11)} | ${pad((r.dracoMs / r.dbssMs).toFixed(2) + 'x', 14)}`;
+  if (resSimd) { const s = resSimd.rows[i]; line += ` | ${pad(s.dbssMs.toFixed(2), 12)} ${pad((r.dracoMs / s.dbssMs).toFixed(2) + 'x', 6)}`; }
+  console.log(line);
+});
+console.log('every level hashes as build/bin/dbss decodes it' + (simd ? ' (the SIMD build too)' : ''));
+
+// What a page ships, gzipped (-9).
+const gz = (p) => gzipSync(readFileSync(p), { level: 9 }).length;
+const sizes = [
+  ['dbss wasm (build-web/dist/dbss_wasm.wasm)', join(buildDir, 'dist/dbss_wasm.wasm')],
+  ['dbss glue (dbss_wasm.mjs)', join(buildDir, 'dist/dbss_wasm.mjs')],
+  ['dbss API (dbss.mjs, loader.mjs, hash.mjs, worker.mjs)', ['dbss.mjs', 'loader.mjs', 'hash.mjs', 'worker.mjs'].map((f) => join(repo, 'web', f))],
+  ['draco3d wasm (draco_decoder.wasm)', join(repo, 'web/node_modules/draco3d/draco_decoder.wasm')],
+  ['draco3d glue (draco_decoder_nodejs.js)', join(repo, 'web/node_modules/draco3d/draco_decoder_nodejs.js')],
+];
+console.log('\nshipped                                                    bytes   gzipped');
+for (const [name, p] of sizes) {
+  const ps = [p].flat();
+  const raw = ps.reduce((s, f) => s + readFileSync(f).length, 0), z = ps.reduce((s, f) => s + gz(f), 0);
+  console.log(`${name.padEnd(56)} ${pad(raw, 8)} ${pad(z, 9)}`);
+}

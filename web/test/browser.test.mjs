@@ -1,0 +1,168 @@
+// The viewer in headless Chromium (Debian's /usr/bin/chromium through
+// playwright-core; WebGL2 on SwiftShader): levels arrive in order over a
+// slow server and hash as natively; a cut file keeps its verified levels
+// and shows `truncated`; damaged bytes show their error and no mesh from
+// them; Range requests fetch exactly up to a level; a screenshot shows the
+// mesh (kept as build-web/artefacts/viewer.png).
+import { test, before, after } from 'node:test';
+import assert from 'node:assert/strict';
+import { spawnSync } from 'node:child_process';
+import { mkdirSync, readFileSync, writeFileSync } from 'node:fs';
+import { join } from 'node:path';
+import { fileURLToPath } from 'node:url';
+import { chromium } from 'playwright-core';
+import { startServer, repoMounts } from '../tools/serve.mjs';
+import { loadModule, StreamingDecoder } from '../dbss.mjs';
+
+const repo = fileURLToPath(new URL('../..', import.meta.url));
+const buildDir = process.env.DBSS_WEB_BUILD ?? join(repo, 'build-web');
+const dbss = process.env.DBSS_BIN ?? join(repo, 'build/bin/dbss');
+const work = join(buildDir, 'test-files');
+const artefacts = join(buildDir, 'artefacts');
+const RATE = 16000;  // bytes per second for the slow server, in 512-byte pieces
+
+function nativeHashes(file) {
+  const r = spawnSync(dbss, ['info', file, '--hashes'], { encoding: 'utf8' });
+  return r.stdout.trim().split('\n').filter(Boolean).map((l) => l.split(' ').pop());
+}
+
+let browser, slow, fast, files = {}, tocOf = {};
+
+before(async () => {
+  mkdirSync(work, { recursive: true });
+  mkdirSync(artefacts, { recursive: true });
+  // A freshly encoded example, and cut and damaged copies of it.
+  const example = join(work, 'example.dbss');
+  const enc = spawnSync(dbss, ['encode', join(repo, 'examples/double-torus.xyz'), '-o', example, '--levels', '4'], { encoding: 'utf8' });
+  assert.equal(enc.status, 0, enc.stderr);
+  const bytes = new Uint8Array(readFileSync(example));
+  const d = new StreamingDecoder(await loadModule());
+  d.push(bytes);
+  const toc = d.toc();
+  d.dispose();
+  const levl = toc.filter((e) => e.type === 'LEVL'), ctrl = toc.find((e) => e.type === 'CTRL');
+  assert.equal(levl.length, 4);
+  const cut = join(work, 'cut.dbss');
+  writeFileSync(cut, bytes.subarray(0, levl[3].offset + Math.floor(levl[3].length / 2)));
+  const damaged = join(work, 'damaged-level2.dbss');
+  const dl = bytes.slice();
+  dl[levl[1].offset + 12 + 3] ^= 0x10;
+  writeFileSync(damaged, dl);
+  const damagedCtrl = join(work, 'damaged-control.dbss');
+  const dc = bytes.slice();
+  dc[ctrl.offset + 12 + 20] ^= 0x01;
+  writeFileSync(damagedCtrl, dc);
+  files = { '/example.dbss': example, '/cut.dbss': cut, '/damaged-level2.dbss': damaged, '/damaged-control.dbss': damagedCtrl,
+    '/garbage-control.dbss': join(repo, 'tests/format/data/garbage-control.dbss') };
+  tocOf = { ctrl, levl, size: bytes.length };
+  const mounts = repoMounts(repo, buildDir);
+  slow = await startServer({ rate: RATE, piece: 512, files, mounts });
+  fast = await startServer({ files, mounts });
+  browser = await chromium.launch({ executablePath: process.env.DBSS_CHROMIUM ?? '/usr/bin/chromium',
+    args: ['--no-sandbox', '--use-angle=swiftshader', '--enable-unsafe-swiftshader', '--ignore-gpu-blocklist'] });
+});
+
+after(async () => {
+  await browser?.close();
+  slow?.server.close();
+  fast?.server.close();
+});
+
+async function view(base, query) {
+  const page = await browser.newPage({ viewport: { width: 900, height: 700 } });
+  const problems = [];
+  page.on('pageerror', (e) => problems.push(e.message));
+  await page.goto(`${base.url}/web/viewer/?${query}`);
+  await page.waitForFunction(() => window.dbssViewer && window.dbssViewer.done, null, { timeout: 60000 });
+  const state = await page.evaluate(() => window.dbssViewer);
+  assert.deepEqual(problems, []);
+  return { page, state };
+}
+
+test('slow server: levels appear in order 0..4, each hashing as natively, each before the file is all in', async () => {
+  const { page, state } = await view(slow, 'file=/example.dbss');
+  const expected = nativeHashes(files['/example.dbss']);
+  assert.equal(expected.length, 5);
+  assert.deepEqual(state.levels.map((l) => l.level), [0, 1, 2, 3, 4]);
+  assert.deepEqual(state.levels.map((l) => l.hash), expected);
+  assert.equal(state.error, null);
+  assert.equal(state.shown, 4);
+  // Progressive: each level was drawn when the bytes up to its chunk were
+  // in, not at the end (the server sends 512-byte pieces).
+  const ends = [tocOf.ctrl.end, ...tocOf.levl.map((e) => e.end)];
+  state.levels.forEach((l, i) => assert.ok(l.bytes < ends[i] + 512 && l.bytes >= ends[i], `level ${i} drawn at byte ${l.bytes}, its chunk ends at ${ends[i]}`));
+  for (let i = 1; i < state.levels.length; ++i) assert.ok(state.levels[i].at > state.levels[i - 1].at);
+  assert.ok(state.firstDrawnMs > 0);
+  console.log(`# first byte to level 0 drawn at ${RATE} bytes/s: ${state.firstDrawnMs.toFixed(0)} ms; level 0 complete at byte ${ends[0]} of ${tocOf.size}`);
+  await page.close();
+});
+
+test('a cut file keeps the finest complete level on screen and shows truncated', async () => {
+  const { page, state } = await view(fast, 'file=/cut.dbss');
+  assert.deepEqual(state.levels.map((l) => l.hash), nativeHashes(files['/example.dbss']).slice(0, 4));
+  assert.equal(state.shown, 3);
+  assert.equal(state.error?.codeName, 'truncated');
+  assert.match(await page.textContent('#status'), /truncated/);
+  await page.close();
+});
+
+test('a damaged level shows checksum_mismatch and no mesh from its bytes', async () => {
+  const { page, state } = await view(fast, 'file=/damaged-level2.dbss');
+  assert.equal(state.error?.codeName, 'checksum_mismatch');
+  assert.ok(state.error.offset >= tocOf.levl[1].offset && state.error.offset < tocOf.levl[1].end);
+  assert.deepEqual(state.levels.map((l) => l.hash), nativeHashes(files['/example.dbss']).slice(0, 2));
+  assert.match(await page.textContent('#status'), /checksum_mismatch/);
+  await page.close();
+});
+
+test('a damaged control mesh shows its error and draws nothing', async () => {
+  const { page, state } = await view(fast, 'file=/damaged-control.dbss');
+  assert.equal(state.error?.codeName, 'checksum_mismatch');
+  assert.deepEqual(state.levels, []);
+  assert.equal(state.shown, -1);
+  await page.close();
+});
+
+test('a control mesh that is not Draco (its CRC holds) shows compression and draws nothing', async () => {
+  const { page, state } = await view(fast, 'file=/garbage-control.dbss');
+  assert.equal(state.error?.codeName, 'compression');
+  assert.deepEqual(state.levels, []);
+  assert.match(await page.textContent('#status'), /compression/);
+  await page.close();
+});
+
+test('Range requests: up to level 1, then level 2 now', async () => {
+  const { page, state } = await view(fast, 'file=/example.dbss&upto=1');
+  const expected = nativeHashes(files['/example.dbss']);
+  assert.deepEqual(state.levels.map((l) => l.hash), expected.slice(0, 2));
+  assert.equal(state.bytes, tocOf.levl[0].end);
+  await page.evaluate(() => { window.dbssViewer.done = false; document.getElementById('more').click(); });
+  await page.waitForFunction(() => window.dbssViewer.done, null, { timeout: 30000 });
+  const after = await page.evaluate(() => window.dbssViewer);
+  assert.deepEqual(after.levels.map((l) => l.hash), expected.slice(0, 3));
+  assert.equal(after.bytes, tocOf.levl[1].end);
+  await page.close();
+});
+
+test('screenshot: the mesh covers a good part of the canvas', async () => {
+  const { page } = await view(fast, 'file=/example.dbss');
+  // Pixels of the WebGL canvas that differ from the background colour.
+  const fraction = await page.evaluate(() => {
+    const c = document.getElementById('view');
+    const copy = document.createElement('canvas');
+    copy.width = c.width;
+    copy.height = c.height;
+    const g = copy.getContext('2d');
+    g.drawImage(c, 0, 0);
+    const px = g.getImageData(0, 0, c.width, c.height).data;
+    let differ = 0;
+    for (let i = 0; i < px.length; i += 4) {
+      if (Math.abs(px[i] - 0x20) + Math.abs(px[i + 1] - 0x24) + Math.abs(px[i + 2] - 0x2a) > 24) ++differ;
+    }
+    return differ / (px.length / 4);
+  });
+  await page.screenshot({ path: join(artefacts, 'viewer.png') });
+  console.log(`# mesh covers ${(100 * fraction).toFixed(1)}% of the canvas; screenshot ${join(artefacts, 'viewer.png')}`);
+  assert.ok(fraction > 0.1, `only ${(100 * fraction).toFixed(1)}% of the canvas differs from the background`);
+  await page.close();
+});

@@ -1,0 +1,83 @@
+// The decoding Web Worker: fetches and decodes a .dbss off the main thread
+// and posts each level as it becomes ready, so the page never blocks on a
+// level.  Messages in:
+//   {type: 'open', url, wasmUrl?, upToLevel?}   stream a file (all of it, or
+//                                               with Range requests up to a level)
+//   {type: 'more'}                              Range request for the next level
+//   {type: 'level', level}                      post a ready level again (slider)
+// Messages out:
+//   {type: 'progress', bytes}
+//   {type: 'level', level, positions, indices, hash, decodeMs, bytes, firstByteAt}
+//   {type: 'error', code, codeName, offset, message, levelsReady}
+//   {type: 'done', complete, levelsReady, levelCount, bytes}
+import { loadModule, StreamingDecoder } from './dbss.mjs';
+import { streamAll, fetchUpToLevel, fetchNextLevel } from './loader.mjs';
+import { fnv1a64 } from './hash.mjs';
+
+let module = null;
+let decoder = null;
+let url = null;
+let posted = 0;     // levels posted so far
+let firstByte = -1; // when the first byte arrived (performance.timeOrigin + now(), comparable across threads)
+
+function postLevel(l) {
+  const t = performance.now();
+  const view = decoder.level(l);
+  const decodeMs = performance.now() - t;
+  // Copies out of the module's memory (its views die with the next call),
+  // transferred, not cloned, to the page.
+  const positions = view.positions.slice(), indices = view.indices.slice();
+  self.postMessage({ type: 'level', level: l, positions, indices, hash: fnv1a64(positions), decodeMs,
+    bytes: decoder.bytesFed(), firstByteAt: firstByte },
+  [positions.buffer, indices.buffer]);
+}
+
+function onPiece(bytes) {
+  if (firstByte < 0) firstByte = performance.timeOrigin + performance.now();
+  self.postMessage({ type: 'progress', bytes: decoder.bytesFed() });
+  while (posted < decoder.levelsReady()) postLevel(posted++);
+}
+
+function report(e) {
+  if (e && e.name === 'DbssError') {
+    self.postMessage({ type: 'error', code: e.code, codeName: e.codeName, offset: e.offset, message: e.message,
+      levelsReady: decoder ? decoder.levelsReady() : 0 });
+  } else {
+    self.postMessage({ type: 'error', code: -1, codeName: 'network', offset: -1, message: String(e && e.message || e),
+      levelsReady: decoder ? decoder.levelsReady() : 0 });
+  }
+}
+
+function done() {
+  self.postMessage({ type: 'done', complete: decoder.complete(), levelsReady: decoder.levelsReady(),
+    levelCount: decoder.levelCount(), bytes: decoder.bytesFed() });
+}
+
+self.onmessage = async (ev) => {
+  const msg = ev.data;
+  try {
+    if (msg.type === 'open') {
+      module ??= await loadModule(msg.wasmUrl);
+      if (decoder) decoder.dispose();
+      decoder = new StreamingDecoder(module);
+      url = msg.url;
+      posted = 0;
+      firstByte = -1;
+      try {
+        if (msg.upToLevel == null) await streamAll(url, decoder, { onPiece });
+        else await fetchUpToLevel(url, decoder, msg.upToLevel, { onPiece });
+      } finally {
+        // Levels verified before an error are still drawn (spec section 11).
+        while (decoder.levelsReady() > posted) postLevel(posted++);
+      }
+      done();
+    } else if (msg.type === 'more') {
+      await fetchNextLevel(url, decoder, { onPiece });
+      done();
+    } else if (msg.type === 'level') {
+      postLevel(msg.level);
+    }
+  } catch (e) {
+    report(e);
+  }
+};
