@@ -199,6 +199,10 @@ bool build_sheet(ControlMeshStages& s, const PointIndex& index, const ControlMes
   } else {
     s.surface_reason = "open (asked)";
   }
+  // Trimming can leave two patches touching at one vertex (a bow tie),
+  // which no later stage can carry: the closed shell it came from is kept.
+  if (!mesh_info(close ? filled : sheet).manifold)
+    return fall_back("closed: the one-sided sheet is not a manifold once trimmed to the points");
   s.open = !close;
   s.cut_triangles = cut.removed + trimmed;
   s.pinholes = pinholes.loops;
