@@ -7,10 +7,12 @@ packages=(
   build-essential cmake ninja-build pkg-config   # toolchain
   clang libclang-rt-14-dev                       # second compiler, sanitizers, libFuzzer
   libdraco-dev libzstd-dev                       # container payloads (decoder)
+  libtinygltf-dev nlohmann-json3-dev             # glTF reading and writing (io); header-only
   libnanoflann-dev libeigen3-dev                 # KD-tree queries, quadrics (encoder)
   libopenmesh-dev                                # QEM decimation (encoder); differential tests
   catch2                                         # tests (Catch2 v2)
   libcgal-dev                                    # rd_bench's peers only (reconstruction); header-only
+  nodejs npm                                     # the Khronos glTF validator (tests/gltf, npm ci)
 )
 # Optional, for scripts/plot-rd.py's plots: apt-get install python3-matplotlib
 
