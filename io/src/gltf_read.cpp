@@ -9,7 +9,7 @@
 
 #include "formats.h"
 #include "text.h"
-#include "tiny_gltf.h"
+#include "tinygltf_config.h"
 
 namespace dbss::io_detail {
 

@@ -9,7 +9,7 @@
 #include "dbss/io/gltf.h"
 #include "formats.h"
 #include "text.h"
-#include "tiny_gltf.h"
+#include "tinygltf_config.h"
 
 namespace dbss {
 

@@ -1,3 +1,3 @@
-// The one translation unit holding tinygltf's implementation (see tiny_gltf.h).
+// The one translation unit holding tinygltf's implementation (see tinygltf_config.h).
 #define TINYGLTF_IMPLEMENTATION
-#include "tiny_gltf.h"
+#include "tinygltf_config.h"
