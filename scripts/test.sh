@@ -20,7 +20,15 @@ jobs=$(nproc 2>/dev/null || echo 2)
 echo "== gcc, Release =="
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_COMPILER=g++ -DDBSS_WERROR=ON
 cmake --build build -j "$jobs"
+rm -rf build/tests/gltf-out  # only this run's glTF files reach the validator below
 ctest --test-dir build --output-on-failure -j "$jobs" | tee build/ctest.log
+
+# The glTF files the gcc suite just wrote (`dbss decode` and `dbss export`
+# in tests/cli, io_tests in tests/gltf-out) through the Khronos validator,
+# pinned in tests/gltf/package-lock.json: any error fails.  About 3 s.
+echo "== glTF validator =="
+(cd tests/gltf && npm ci --no-audit --no-fund --loglevel=error)
+node tests/gltf/validate.mjs build/tests/cli build/tests/gltf-out
 
 # Format, decoder and io alone, where Eigen and nanoflann cannot be reached.
 echo "== decoder-only build =="
@@ -63,5 +71,5 @@ for log in build/ctest.log build-asan/ctest.log; do
   n=$(sed -n 's/^100% tests passed, 0 tests failed out of \([0-9]*\)$/\1/p' "$log")
   passed=$((passed + ${n:-0}))
 done
-echo "test.sh: gcc and clang+sanitizer suites, the decoder-only build, golden files at -O0 and clang -O3, fuzzing: all clean"
+echo "test.sh: gcc and clang+sanitizer suites, the glTF validator, the decoder-only build, golden files at -O0 and clang -O3, fuzzing: all clean"
 echo "${passed} passed, 0 failed"

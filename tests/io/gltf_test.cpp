@@ -29,8 +29,16 @@ fs::path scratch() {
   return d;
 }
 
-std::string write_bytes(const std::string& name, std::string_view bytes) {
-  const std::string path = (scratch() / name).string();
+// Valid files this test writes stay here for the glTF validator step of
+// scripts/test.sh (tests/gltf/validate.mjs); damaged ones go to scratch().
+fs::path kept() {
+  const fs::path d = DBSS_GLTF_OUT_DIR;
+  fs::create_directories(d);
+  return d;
+}
+
+std::string write_bytes(const fs::path& dir, const std::string& name, std::string_view bytes) {
+  const std::string path = (dir / name).string();
   std::ofstream(path, std::ios::binary).write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
   return path;
 }
@@ -122,6 +130,7 @@ TEST_CASE("glTF export holds every decoded level bit for bit, linked by MSFT_lod
       INFO((binary ? "glb" : "gltf"));
       auto bytes = gltf_bytes(lods, binary);
       REQUIRE(bytes.ok());
+      write_bytes(kept(), std::string(golden) + (binary ? ".glb" : ".gltf"), bytes.value());
       const tinygltf::Model m = load(bytes.value(), binary);
       REQUIRE(m.scenes.size() == 1);
       REQUIRE(m.scenes[0].nodes == std::vector<int>{0});
@@ -160,7 +169,8 @@ TEST_CASE("glTF indices are 16-bit up to 65,535 vertices and 32-bit past, and re
                             std::tuple{256u, 257u, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT}}) {
     const TriangleMesh m = grid(w, h);
     INFO(m.vertex_count() << " vertices");
-    const std::string path = (scratch() / "grid.glb").string();
+    const std::string path =
+        (kept() / (type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT ? "grid-uint16.glb" : "grid-uint32.glb")).string();
     REQUIRE(write_mesh(path, m).ok());
     auto file = io::read_file(path);
     REQUIRE(file.ok());
@@ -237,7 +247,7 @@ TEST_CASE("damaged glTF files are refused with the file named") {
 
   auto refused = [](const std::string& name, const std::string& bytes, const std::string& why) {
     INFO(name << ": expecting '" << why << "'");
-    auto r = read_geometry(write_bytes(name, bytes));
+    auto r = read_geometry(write_bytes(scratch(), name, bytes));
     REQUIRE(!r.ok());
     INFO(r.status().message());
     CHECK(r.status().message().find((scratch() / name).string() + ": ") == 0);
