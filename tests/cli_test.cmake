@@ -284,6 +284,16 @@ if(NOT got MATCHES "^level 2 vertices [0-9]+ triangles [0-9]+ indices uint16 fnv
   message(FATAL_ERROR "export --levels 1..2 wrote:\n${got}")
 endif()
 expect_run(0 "levels 3..3 " ${DBSS} export ${golden}.dbss -o ${WORK}/export-3.glb --levels 3)
+# --draco: the coarser levels Draco-compressed (the validator checks the
+# file's structure; io_tests decodes the Draco levels), a smaller file.
+expect_run(0 "levels 0..4 " ${DBSS} export ${golden}.dbss -o ${WORK}/export-draco.glb --draco 12)
+file(SIZE ${WORK}/export-draco.glb draco_size)
+file(SIZE ${WORK}/export-torus-4-levels.glb plain_size)
+if(NOT draco_size LESS plain_size)
+  message(FATAL_ERROR "export --draco 12 wrote ${draco_size} bytes, the plain export ${plain_size}")
+endif()
+expect_run(1 "uses Draco-compressed meshes" ${DBSS} encode ${WORK}/export-draco.glb -o ${WORK}/x.dbss)
+expect_run(1 "--draco needs a whole number" ${DBSS} export ${golden}.dbss -o ${WORK}/x.glb --draco 2)
 expect_run(0 "usage: dbss export" ${DBSS} export --help)
 expect_run(1 "no output file" ${DBSS} export ${golden}.dbss)
 expect_run(1 "must be a .glb or .gltf file" ${DBSS} export ${golden}.dbss -o ${WORK}/x.ply)

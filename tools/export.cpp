@@ -15,7 +15,7 @@ namespace dbss::tools {
 
 namespace {
 constexpr const char* kHelp =
-    "usage: dbss export IN.dbss -o OUT.{glb,gltf} [--levels A..B]\n"
+    "usage: dbss export IN.dbss -o OUT.{glb,gltf} [--levels A..B] [--draco BITS]\n"
     "\n"
     "Decodes levels A to B of a .dbss file and writes them as levels of detail\n"
     "of one glTF 2.0 asset: one mesh per level (float32 positions equal to\n"
@@ -28,6 +28,11 @@ constexpr const char* kHelp =
     "  -o, --output FILE   .glb (binary) or .gltf (text, buffer embedded), replaced atomically\n"
     "  --levels A..B       levels to export, 0 = control mesh; a single number L\n"
     "                      exports that level alone (default: 0 to the finest level)\n"
+    "  --draco BITS        compress every level but the finest with Draco\n"
+    "                      (KHR_draco_mesh_compression, BITS position bits, 4 to 30;\n"
+    "                      11 to 14 is usual); the extension becomes required, so\n"
+    "                      viewers without a Draco decoder refuse the file. The\n"
+    "                      finest level stays plain, bit for bit.\n"
     "\n"
     "A damaged or truncated file keeps the levels verified before the damage:\n"
     "without --levels they are exported with a warning; with --levels, every\n"
@@ -55,7 +60,7 @@ bool parse_levels(std::string_view s, long& first, long& last) {
 
 int run_export(const std::vector<std::string_view>& args) {
   std::string input, output;
-  long first = -1, last = -1;
+  long first = -1, last = -1, draco_bits = 0;
   for (size_t i = 0; i < args.size(); ++i) {
     const std::string_view a = args[i];
     if (a == "--help" || a == "-h") {
@@ -69,6 +74,9 @@ int run_export(const std::vector<std::string_view>& args) {
       if (!parse_levels(args[++i], first, last))
         return usage("--levels needs A..B with whole numbers 0 <= A <= B <= " + std::to_string(format::kMaxLevelsInPractice) +
                      ", or one level L");
+    } else if (a == "--draco") {
+      if (i + 1 >= args.size() || !parse_int(args[++i], 4, 30, draco_bits))
+        return usage("--draco needs a whole number of position bits from 4 to 30");
     } else if (!a.empty() && a[0] == '-') {
       return usage("unknown option '" + std::string(a) + "'");
     } else if (input.empty()) {
@@ -134,7 +142,9 @@ int run_export(const std::vector<std::string_view>& args) {
   std::vector<GltfLod> lods;
   for (long l = last; l >= first; --l) lods.push_back({"level " + std::to_string(l), &meshes[static_cast<size_t>(l - first)]});
   progress.show("writing " + output);
-  const Status written = write_gltf_lods(output, lods);
+  GltfOptions options;
+  options.draco_bits = static_cast<int>(draco_bits);
+  const Status written = write_gltf_lods(output, lods, options);
   progress.done();
   if (!written.ok()) {
     std::fprintf(stderr, "dbss export: %s\n", written.message().c_str());

@@ -15,6 +15,8 @@ namespace dbss::io_detail {
 
 namespace {
 
+constexpr const char* kNoDraco = "which dbss does not read; decompress it first (e.g. gltf-transform copy)";
+
 using Matrix = std::array<double, 16>;  // column-major, as glTF stores it
 constexpr Matrix kIdentity = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
 
@@ -107,9 +109,13 @@ class Reader {
 
   Status add_primitive(const tinygltf::Primitive& prim, const std::string& where, const Matrix& world, bool identity,
                        GeometryFile& out) {
-    if (prim.extensions.count("KHR_draco_mesh_compression"))
-      return bad(name_, where + " is Draco-compressed (KHR_draco_mesh_compression), which dbss does not read; "
-                                "decompress it first (e.g. gltf-transform copy)");
+    // A Draco primitive may keep plain accessors as a fallback; without
+    // them there is nothing dbss can read.
+    const auto position = prim.attributes.find("POSITION");
+    if (prim.extensions.count("KHR_draco_mesh_compression") &&
+        (position == prim.attributes.end() || position->second < 0 ||
+         position->second >= static_cast<int>(m_.accessors.size()) || m_.accessors[position->second].bufferView < 0))
+      return bad(name_, where + " is Draco-compressed (KHR_draco_mesh_compression), " + kNoDraco);
     const int mode = prim.mode < 0 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
     if (mode == TINYGLTF_MODE_LINE || mode == TINYGLTF_MODE_LINE_LOOP || mode == TINYGLTF_MODE_LINE_STRIP)
       return bad(name_, where + " draws lines, not a surface or points");
@@ -312,6 +318,10 @@ Result<GeometryFile> parse_gltf(const std::string& name, std::string_view bytes)
     return bad(name, std::string("not a valid glTF file: ") + e.what());
   }
   if (!loaded) {
+    // tinygltf refuses Draco primitives' accessors without a buffer view;
+    // say why rather than echo that.
+    if (bytes.find("\"KHR_draco_mesh_compression\"") != std::string_view::npos)
+      return bad(name, std::string("uses Draco-compressed meshes (KHR_draco_mesh_compression), ") + kNoDraco);
     while (!err.empty() && (err.back() == '\n' || err.back() == ' ')) err.pop_back();
     for (char& c : err)
       if (c == '\n') c = ';';

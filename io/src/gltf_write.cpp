@@ -8,6 +8,7 @@
 #include "dbss/io/file.h"
 #include "dbss/io/gltf.h"
 #include "formats.h"
+#include "gltf_draco.h"
 #include "text.h"
 #include "tinygltf_config.h"
 
@@ -91,6 +92,44 @@ int add_level(tinygltf::Model& m, std::vector<unsigned char>& buffer, const Gltf
   return static_cast<int>(m.meshes.size() - 1);
 }
 
+// One level as a Draco-compressed primitive: its accessors have no buffer
+// view, only the counts and bounds of what Draco decodes to.
+Result<int> add_draco_level(tinygltf::Model& m, std::vector<unsigned char>& buffer, const GltfLod& lod, int bits) {
+  auto d = io_detail::draco_level(*lod.mesh, bits);
+  if (!d.ok()) return d.status();
+  const io_detail::DracoLevel& dl = d.value();
+  tinygltf::Accessor pos;
+  pos.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
+  pos.type = TINYGLTF_TYPE_VEC3;
+  pos.count = dl.points;
+  pos.minValues.assign(dl.min, dl.min + 3);
+  pos.maxValues.assign(dl.max, dl.max + 3);
+  m.accessors.push_back(pos);
+  const int pos_index = static_cast<int>(m.accessors.size() - 1);
+  tinygltf::Accessor idx;
+  idx.type = TINYGLTF_TYPE_SCALAR;
+  idx.count = 3 * dl.faces;
+  idx.componentType = dl.points <= 65535 ? TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT : TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
+  m.accessors.push_back(idx);
+
+  // No target: Draco bytes are not GPU data.
+  const int view = add_view(m, append_aligned(buffer, dl.bytes.data(), dl.bytes.size()), dl.bytes.size(), 0);
+  tinygltf::Value::Object attributes, ext;
+  attributes["POSITION"] = tinygltf::Value(dl.position_id);
+  ext["bufferView"] = tinygltf::Value(view);
+  ext["attributes"] = tinygltf::Value(std::move(attributes));
+  tinygltf::Primitive prim;
+  prim.attributes["POSITION"] = pos_index;
+  prim.indices = static_cast<int>(m.accessors.size() - 1);
+  prim.mode = TINYGLTF_MODE_TRIANGLES;
+  prim.extensions["KHR_draco_mesh_compression"] = tinygltf::Value(std::move(ext));
+  tinygltf::Mesh gm;
+  gm.name = lod.name;
+  gm.primitives.push_back(prim);
+  m.meshes.push_back(gm);
+  return static_cast<int>(m.meshes.size() - 1);
+}
+
 Status check_lods(std::span<const GltfLod> lods) {
   if (lods.empty()) return Status(ErrorCode::invalid_argument, "glTF: no levels to write");
   for (const GltfLod& l : lods) {
@@ -122,17 +161,27 @@ std::vector<double> gltf_screen_coverage(std::span<const size_t> triangle_counts
   return out;
 }
 
-Result<std::string> gltf_bytes(std::span<const GltfLod> lods, bool binary) {
+Result<std::string> gltf_bytes(std::span<const GltfLod> lods, bool binary, const GltfOptions& options) {
   if (Status s = check_lods(lods); !s.ok()) return s;
+  if (options.draco_bits < 0 || options.draco_bits > 30)
+    return Status(ErrorCode::invalid_argument, "glTF: Draco position bits must be 0 (none) to 30");
   tinygltf::Model m;
   m.asset.version = "2.0";
   m.asset.generator = "dbss " DBSS_IO_VERSION;
   std::vector<unsigned char> buffer;
   std::vector<size_t> triangle_counts;
+  bool draco_used = false;
   for (const GltfLod& l : lods) {
     tinygltf::Node n;
     n.name = l.name;
-    n.mesh = add_level(m, buffer, l);
+    if (options.draco_bits > 0 && !m.nodes.empty()) {
+      auto mesh = add_draco_level(m, buffer, l, options.draco_bits);
+      if (!mesh.ok()) return mesh.status();
+      n.mesh = mesh.value();
+      draco_used = true;
+    } else {
+      n.mesh = add_level(m, buffer, l);
+    }
     m.nodes.push_back(n);
     triangle_counts.push_back(l.mesh->triangle_count());
   }
@@ -158,6 +207,11 @@ Result<std::string> gltf_bytes(std::span<const GltfLod> lods, bool binary) {
     m.nodes[0].extras = tinygltf::Value(std::move(extras));
     m.extensionsUsed.push_back("MSFT_lod");
   }
+  if (draco_used) {
+    // No uncompressed fallback is stored, so a viewer must decode Draco.
+    m.extensionsUsed.push_back("KHR_draco_mesh_compression");
+    m.extensionsRequired.push_back("KHR_draco_mesh_compression");
+  }
   tinygltf::Scene scene;
   scene.nodes.push_back(0);
   m.scenes.push_back(scene);
@@ -170,11 +224,11 @@ Result<std::string> gltf_bytes(std::span<const GltfLod> lods, bool binary) {
   return std::move(out).str();
 }
 
-Status write_gltf_lods(const std::string& path, std::span<const GltfLod> lods) {
+Status write_gltf_lods(const std::string& path, std::span<const GltfLod> lods, const GltfOptions& options) {
   const std::string ext = io_detail::lower_extension(path);
   if (ext != "glb" && ext != "gltf")
     return Status(ErrorCode::invalid_argument, path + ": a glTF file needs the extension .glb or .gltf");
-  auto bytes = gltf_bytes(lods, ext == "glb");
+  auto bytes = gltf_bytes(lods, ext == "glb", options);
   if (!bytes.ok()) return Status(bytes.status().code(), path + ": " + bytes.status().message());
   const std::string& b = bytes.value();
   return io::write_file_atomic(path, std::span<const uint8_t>(reinterpret_cast<const uint8_t*>(b.data()), b.size()));

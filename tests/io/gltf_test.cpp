@@ -7,7 +7,9 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <bit>
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -17,6 +19,9 @@
 #include "dbss/io/geometry_files.h"
 #include "dbss/io/gltf.h"
 #include "tinygltf_config.h"  // io/src: tinygltf, for an independent look at what was written
+
+#include <draco/compression/decode.h>
+#include <nlohmann/json.hpp>
 
 using namespace dbss;
 namespace fs = std::filesystem;
@@ -161,6 +166,99 @@ TEST_CASE("glTF export holds every decoded level bit for bit, linked by MSFT_lod
       CHECK(back.value().triangles == levels.back().triangles);
     }
   }
+}
+
+TEST_CASE("glTF export with --draco: coarser levels decode from Draco to the level within the quantization step") {
+  auto file = io::read_file(std::string(DBSS_SOURCE_DIR) + "/tests/golden/v1/torus-4-levels.dbss");
+  REQUIRE(file.ok());
+  ProgressiveDecoder d;
+  REQUIRE(d.feed(file.value()).ok());
+  REQUIRE(d.finish().ok());
+  std::vector<TriangleMesh> levels;
+  for (int l = 0; l <= d.ready_level(); ++l) levels.push_back(d.decode(static_cast<uint32_t>(l)).value().copy());
+  std::vector<GltfLod> lods;
+  for (size_t l = levels.size(); l-- > 0;) lods.push_back({"level " + std::to_string(l), &levels[l]});
+  constexpr int kBits = 11;
+  GltfOptions options;
+  options.draco_bits = kBits;
+  auto bytes = gltf_bytes(lods, true, options);
+  REQUIRE(bytes.ok());
+  const std::string& glb = bytes.value();
+  write_bytes(kept(), "torus-draco-11.glb", glb);
+  CHECK(glb.size() < gltf_bytes(lods, true).value().size());
+
+  // tinygltf 2.7 cannot load Draco primitives without Draco built in, so
+  // the GLB's chunks are read by hand: JSON at byte 20, then BIN.
+  uint32_t json_length = 0, bin_length = 0;
+  std::memcpy(&json_length, glb.data() + 12, 4);
+  std::memcpy(&bin_length, glb.data() + 20 + json_length, 4);
+  const nlohmann::json j = nlohmann::json::parse(glb.substr(20, json_length));
+  const std::string bin = glb.substr(28 + json_length, bin_length);
+  CHECK(j["extensionsRequired"] == nlohmann::json::array({"KHR_draco_mesh_compression"}));
+  const nlohmann::json& root = j["nodes"][0];
+  REQUIRE(root["extensions"]["MSFT_lod"]["ids"].size() == levels.size() - 1);
+  for (size_t k = 0; k < levels.size(); ++k) {
+    const size_t level = levels.size() - 1 - k;
+    INFO("level " << level);
+    const int node = k == 0 ? 0 : root["extensions"]["MSFT_lod"]["ids"][k - 1].get<int>();
+    const nlohmann::json& prim = j["meshes"][j["nodes"][node]["mesh"].get<int>()]["primitives"][0];
+    const nlohmann::json& pos = j["accessors"][prim["attributes"]["POSITION"].get<int>()];
+    const TriangleMesh& want = levels[level];
+    if (k == 0) {
+      // The finest stays plain and exact.
+      REQUIRE(!prim.contains("extensions"));
+      const nlohmann::json& view = j["bufferViews"][pos["bufferView"].get<int>()];
+      std::vector<float> got(want.positions.size());
+      std::memcpy(got.data(), bin.data() + view.value("byteOffset", 0), got.size() * 4);
+      CHECK(bits(got) == bits(want.positions));
+      continue;
+    }
+    REQUIRE(!pos.contains("bufferView"));
+    const nlohmann::json& ext = prim["extensions"]["KHR_draco_mesh_compression"];
+    const nlohmann::json& view = j["bufferViews"][ext["bufferView"].get<int>()];
+    draco::DecoderBuffer db;
+    db.Init(bin.data() + view.value("byteOffset", 0), view["byteLength"].get<size_t>());
+    draco::Decoder decoder;
+    auto mesh = decoder.DecodeMeshFromBuffer(&db);
+    REQUIRE(mesh.ok());
+    const draco::Mesh& m = *mesh.value();
+    CHECK(m.num_faces() == want.triangle_count());
+    CHECK(m.num_points() == pos["count"].get<size_t>());
+    CHECK(j["accessors"][prim["indices"].get<int>()]["count"].get<size_t>() == 3 * want.triangle_count());
+    const draco::PointAttribute* p = m.GetAttributeByUniqueId(ext["attributes"]["POSITION"].get<uint32_t>());
+    REQUIRE(p != nullptr);
+    // Every decoded point lies within Draco's quantization of a vertex of
+    // the level, and the accessor's bounds are those of the decoded points.
+    float lo[3], hi[3];
+    for (int a = 0; a < 3; ++a) lo[a] = hi[a] = want.positions[a];
+    for (size_t v = 0; v < want.vertex_count(); ++v)
+      for (int a = 0; a < 3; ++a)
+        lo[a] = std::min(lo[a], want.positions[3 * v + a]), hi[a] = std::max(hi[a], want.positions[3 * v + a]);
+    const float step = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]}) / float((1 << kBits) - 1);
+    float dmin[3] = {1e30f, 1e30f, 1e30f}, dmax[3] = {-1e30f, -1e30f, -1e30f};
+    float worst = 0;
+    for (draco::PointIndex i(0); i < m.num_points(); ++i) {
+      float x[3];
+      p->GetMappedValue(i, x);
+      float best = 1e30f;
+      for (size_t v = 0; v < want.vertex_count(); ++v) {
+        float d2 = 0;
+        for (int a = 0; a < 3; ++a) d2 += (x[a] - want.positions[3 * v + a]) * (x[a] - want.positions[3 * v + a]);
+        best = std::min(best, d2);
+      }
+      worst = std::max(worst, std::sqrt(best));
+      for (int a = 0; a < 3; ++a) dmin[a] = std::min(dmin[a], x[a]), dmax[a] = std::max(dmax[a], x[a]);
+    }
+    CHECK(worst <= step);  // half a step per axis, sqrt(3)/2 < 1
+    for (int a = 0; a < 3; ++a) {
+      CHECK(pos["min"][a].get<double>() == double{dmin[a]});
+      CHECK(pos["max"][a].get<double>() == double{dmax[a]});
+    }
+  }
+  // io refuses to read it back, saying why.
+  auto back = parse_geometry("draco.glb", glb);
+  REQUIRE(!back.ok());
+  CHECK(back.status().message().find("draco.glb: uses Draco-compressed meshes") == 0);
 }
 
 TEST_CASE("glTF indices are 16-bit up to 65,535 vertices and 32-bit past, and read back") {

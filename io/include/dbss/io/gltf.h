@@ -19,6 +19,15 @@ struct GltfLod {
   const TriangleMesh* mesh = nullptr;
 };
 
+// How levels are stored.  draco_bits > 0: every level but the finest is
+// compressed with Draco (KHR_draco_mesh_compression, that many position
+// quantization bits, 1..30), which makes the extension required: viewers
+// without a Draco decoder then refuse the whole file.  The finest level
+// always stays plain, bit for bit.
+struct GltfOptions {
+  int draco_bits = 0;
+};
+
 // The whole file's bytes for `lods`, finest first.  Every level is a mesh
 // of one indexed triangle primitive: positions float32 (bit for bit those of
 // the TriangleMesh, with their exact min/max), indices uint16 when every
@@ -32,13 +41,13 @@ struct GltfLod {
 // the default material flat.  `binary`: GLB, else glTF text with the buffer
 // embedded as a base64 data URI.  invalid_argument when `lods` is empty, a
 // mesh is null or has no triangles or an index past its vertices, or the
-// result would pass GLB's 4 GiB limit.
-Result<std::string> gltf_bytes(std::span<const GltfLod> lods, bool binary);
+// result would pass GLB's 4 GiB limit; `options` as GltfOptions says.
+Result<std::string> gltf_bytes(std::span<const GltfLod> lods, bool binary, const GltfOptions& options = {});
 
 // Writes gltf_bytes(lods, ...) atomically to `path`, GLB for .glb and text
 // for .gltf (case-insensitive); invalid_argument naming the path for
 // another extension.
-Status write_gltf_lods(const std::string& path, std::span<const GltfLod> lods);
+Status write_gltf_lods(const std::string& path, std::span<const GltfLod> lods, const GltfOptions& options = {});
 
 // The MSFT_screencoverage hints for levels of `triangle_counts` triangles,
 // finest first: one value per level, non-increasing, the last 0 (the
