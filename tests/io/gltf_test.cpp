@@ -258,6 +258,7 @@ TEST_CASE("glTF export with --draco: coarser levels decode from Draco to the lev
   // io refuses to read it back, saying why.
   auto back = parse_geometry("draco.glb", glb);
   REQUIRE(!back.ok());
+  INFO(back.status().message());
   CHECK(back.status().message().find("draco.glb: uses Draco-compressed meshes") == 0);
 }
 
