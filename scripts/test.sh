@@ -26,9 +26,16 @@ ctest --test-dir build --output-on-failure -j "$jobs" | tee build/ctest.log
 # The glTF files the gcc suite just wrote (`dbss decode` and `dbss export`
 # in tests/cli, io_tests in tests/gltf-out) through the Khronos validator,
 # pinned in tests/gltf/package-lock.json: any error fails.  About 3 s.
+# Offline, as with the scan data above, the step is skipped unless CI=true.
 echo "== glTF validator =="
-(cd tests/gltf && npm ci --no-audit --no-fund --loglevel=error)
-node tests/gltf/validate.mjs build/tests/cli build/tests/gltf-out
+if (cd tests/gltf && npm ci --no-audit --no-fund --loglevel=error); then
+  node tests/gltf/validate.mjs build/tests/cli build/tests/gltf-out
+elif [ "${CI:-}" = true ]; then
+  echo "test: npm ci in tests/gltf failed and CI=true: failing" >&2
+  exit 1
+else
+  echo "test: the glTF validator could not be installed (offline?); its step is skipped" >&2
+fi
 
 # Format, decoder and io alone, where Eigen and nanoflann cannot be reached.
 echo "== decoder-only build =="

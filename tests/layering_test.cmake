@@ -2,9 +2,9 @@
 #   format <- decoder <- io <- encoder <- measure <- tools
 # a file may include the public headers of its own layer and those below it,
 # never above.  `dbss info`, `dbss decode` and `dbss export` (tools/info.cpp,
-# decode.cpp, export.cpp, args.cpp) sit on format, decoder and io alone, and the reference decoder
-# (spec/reference) includes no dbss header at all: it is an independent
-# witness.  Run with -DSOURCE=<source dir>.
+# decode.cpp, export.cpp, args.cpp) sit on format, decoder and io alone, and
+# the reference decoder (spec/reference) includes no dbss header at all: it
+# is an independent witness.  Run with -DSOURCE=<source dir>.
 cmake_minimum_required(VERSION 3.20)
 set(layers format decoder io encoder measure tools)
 set(errors "")

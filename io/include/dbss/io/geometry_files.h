@@ -1,7 +1,7 @@
 // Points and meshes in the common interchange formats: PLY, OBJ, OFF, STL,
-// glTF (.glb, .gltf) and XYZ.  One file per format in io/src, each with its reader and writer,
-// behind one table keyed by extension (io/src/formats.cpp): adding a format
-// is one file and one row.
+// glTF (.glb, .gltf) and XYZ.  One file per format in io/src, each with its
+// reader and writer, behind one table keyed by extension
+// (io/src/formats.cpp): adding a format is one file and one row.
 #pragma once
 
 #include <cstdint>
@@ -53,8 +53,7 @@ Result<TriangleMesh> read_mesh(const std::string& path);
 // (`v` lines), OFF (with or without colours/normals, faces ignored), XYZ
 // (`x y z` or `x y z nx ny nz` per line) and STL (ascii or binary; the
 // triangle corners, duplicates merged) and glTF (as read_geometry()).  The
-// format is chosen by extension,
-// case-insensitive.  Errors (invalid_argument / io) name the file and the
+// format is chosen by extension, case-insensitive.  Errors (invalid_argument / io) name the file and the
 // line or byte: unreadable, empty, malformed, cut short, NaN, infinite or
 // over 1e15 in magnitude.
 Result<PointCloud> read_points(const std::string& path);
