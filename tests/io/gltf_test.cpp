@@ -336,6 +336,20 @@ TEST_CASE("glTF input: node transforms, strips, seams merged, several meshes") {
   CHECK(pts.value().points.xyz ==
         std::vector<float>{0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0, 2, 0, 2, 0, 2, 2, 2, 2, 2, 0, 0, 2});
   CHECK(pts.value().triangles == std::vector<uint32_t>{0, 1, 2, 2, 1, 3, 2, 3, 0});
+
+  // The buffer in a file beside the .gltf, found from the .gltf's directory
+  // whatever the working directory; a missing one is refused by name.
+  write_bytes(scratch(), "strip.bin", raw);
+  const std::string beside = replaced(gltf, "data:application/octet-stream;base64," + b64, "strip.bin");
+  auto ext = read_geometry(write_bytes(scratch(), "beside.gltf", beside));
+  REQUIRE(ext.ok());
+  CHECK(ext.value().points.xyz == g.value().points.xyz);
+  CHECK(ext.value().triangles == g.value().triangles);
+  auto missing = read_geometry(write_bytes(scratch(), "nobin.gltf", replaced(beside, "strip.bin", "gone.bin")));
+  REQUIRE(!missing.ok());
+  INFO(missing.status().message());
+  CHECK(missing.status().message().find("nobin.gltf: not a valid glTF file") != std::string::npos);
+  CHECK(missing.status().message().find("gone.bin") != std::string::npos);
 }
 
 TEST_CASE("damaged glTF files are refused with the file named") {
