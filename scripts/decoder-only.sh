@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The decoder-only build (issue 14): format, decoder, io and a dbss command
-# with `info` and `decode`, configured with -DDBSS_BUILD_ENCODER=OFF on a
+# with `info`, `decode` and `export`, configured with -DDBSS_BUILD_ENCODER=OFF on a
 # compiler that cannot see Eigen or nanoflann: find_package for either is
 # disabled, and a directory of poisoned headers (#error) comes first on the
 # include path, so reaching an Eigen or nanoflann include fails the build.
@@ -50,9 +50,10 @@ for f in tests/golden/v1/*.dbss; do
     exit 1
   }
   "$dbss" decode "$f" -o "$work/out.ply" >/dev/null
+  "$dbss" export "$f" -o "$work/out.glb" >/dev/null
 done
 
 cmake -S tests/install/consumer -B "$work/consumer" -G Ninja -DCMAKE_PREFIX_PATH="$PWD/$work/prefix" >/dev/null
 cmake --build "$work/consumer" >/dev/null
 "$work/consumer/consumer" tests/golden/v1/torus-4-levels.dbss | grep -q "decoder-only consumer ok"
-echo "decoder-only: built without Eigen and nanoflann; info, decode and a find_package(dbss COMPONENTS decoder) consumer work"
+echo "decoder-only: built without Eigen and nanoflann; info, decode, export and a find_package(dbss COMPONENTS decoder) consumer work"

@@ -10,11 +10,11 @@ jobs=$(nproc 2>/dev/null || echo 2)
 
 cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ \
   -DDBSS_BUILD_FUZZ=ON -DDBSS_BUILD_TESTS=OFF -DDBSS_BUILD_BENCH=OFF -DDBSS_BUILD_TOOLS=OFF >/dev/null
-cmake --build build-fuzz -j "$jobs" --target container_fuzzer decode_fuzzer
+cmake --build build-fuzz -j "$jobs" --target container_fuzzer decode_fuzzer gltf_fuzzer
 
 mkdir -p build-fuzz/crashes
 status=0
-for target in container decode; do
+for target in container decode gltf; do
   work=$(mktemp -d)
   cp -r "fuzz/corpus/$target/." "$work/"
   echo "== fuzz: $target for ${seconds}s =="

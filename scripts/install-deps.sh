@@ -7,6 +7,7 @@ packages=(
   build-essential cmake ninja-build pkg-config   # toolchain
   clang libclang-rt-14-dev                       # second compiler, sanitizers, libFuzzer
   libdraco-dev libzstd-dev                       # container payloads (decoder)
+  libtinygltf-dev nlohmann-json3-dev             # glTF reading and writing (io); header-only
   libnanoflann-dev libeigen3-dev                 # KD-tree queries, quadrics (encoder)
   libopenmesh-dev                                # QEM decimation (encoder); differential tests
   catch2                                         # tests (Catch2 v2)

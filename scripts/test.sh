@@ -20,6 +20,7 @@ jobs=$(nproc 2>/dev/null || echo 2)
 echo "== gcc, Release =="
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_COMPILER=g++ -DDBSS_WERROR=ON -DDBSS_BUILD_PYTHON=ON
 cmake --build build -j "$jobs"
+rm -rf build/tests/gltf-out  # only this run's glTF files reach the validator below
 ctest --test-dir build --output-on-failure -j "$jobs" | tee build/ctest.log
 
 # The Python module (built above into build/python) against the command
@@ -33,6 +34,20 @@ PYTHONPATH="$PWD/build/python" /usr/bin/python3 -m pytest -q python/tests
 echo "== web =="
 bash scripts/web-build.sh build-web
 DBSS_BIN="$PWD/build/bin/dbss" bash web/test/run.sh
+
+# The glTF files the gcc suite just wrote (`dbss decode` and `dbss export`
+# in tests/cli, io_tests in tests/gltf-out) through the Khronos validator,
+# pinned in tests/gltf/package-lock.json: any error fails.  About 3 s.
+# Offline, as with the scan data above, the step is skipped unless CI=true.
+echo "== glTF validator =="
+if (cd tests/gltf && npm ci --no-audit --no-fund --loglevel=error); then
+  node tests/gltf/validate.mjs build/tests/cli build/tests/gltf-out
+elif [ "${CI:-}" = true ]; then
+  echo "test: npm ci in tests/gltf failed and CI=true: failing" >&2
+  exit 1
+else
+  echo "test: the glTF validator could not be installed (offline?); its step is skipped" >&2
+fi
 
 # Format, decoder and io alone, where Eigen and nanoflann cannot be reached.
 echo "== decoder-only build =="
@@ -75,5 +90,5 @@ for log in build/ctest.log build-asan/ctest.log; do
   n=$(sed -n 's/^100% tests passed, 0 tests failed out of \([0-9]*\)$/\1/p' "$log")
   passed=$((passed + ${n:-0}))
 done
-echo "test.sh: gcc and clang+sanitizer suites, the Python tests, the web build and its browser tests, the decoder-only build, golden files at -O0 and clang -O3, fuzzing: all clean"
+echo "test.sh: gcc and clang+sanitizer suites, the Python tests, the web build and its browser tests, the glTF validator, the decoder-only build, golden files at -O0 and clang -O3, fuzzing: all clean"
 echo "${passed} passed, 0 failed"

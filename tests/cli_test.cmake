@@ -1,5 +1,6 @@
 # Runs the dbss command on good, damaged and missing files and checks exit
-# codes and messages.  Invoked by CTest with -DDBSS, -DEXAMPLE, -DMESH_HASH, -DWORK.
+# codes and messages.  Invoked by CTest with -DDBSS, -DEXAMPLE, -DMESH_HASH,
+# -DGLTF_LODS, -DWORK.
 file(REMOVE_RECURSE ${WORK})
 file(MAKE_DIRECTORY ${WORK})
 
@@ -62,7 +63,7 @@ expect_run(1 "--error needs a number" ${DBSS} encode ${example} -o ${WORK}/x.dbs
 expect_run(1 "unknown mesh format" ${DBSS} decode ${g} -o ${WORK}/x.vrml)
 # Encode -> decode through every supported input format: the decoded level
 # written in each format is read back as points and encoded again.
-foreach(ext ply obj off stl)
+foreach(ext ply obj off stl glb gltf)
   expect_run(0 "-> ${WORK}/rt.${ext}" ${DBSS} decode ${g} -o ${WORK}/rt.${ext})
   expect_run(0 "genus 2" ${DBSS} encode ${WORK}/rt.${ext} -o ${WORK}/rt-${ext}.dbss --levels 1)
   expect_run(0 "complete, every chunk verified" ${DBSS} info ${WORK}/rt-${ext}.dbss)
@@ -225,9 +226,10 @@ expect_run(1 "\"complete\": false" ${DBSS} info ${garbage} --json)
 expect_run(1 "compression: control mesh" ${DBSS} decode ${garbage} -o ${WORK}/g.ply)
 
 # `dbss decode` writes the decoded level itself: at every level of a golden
-# file, the positions read back from the written PLY, OBJ and OFF hash to the
-# level's recorded hash (binary32 survives PLY's bytes and the 9 significant
-# digits of OBJ and OFF exactly), with the level's vertex and triangle counts.
+# file, the positions read back from the written PLY, OBJ, OFF, GLB and glTF
+# hash to the level's recorded hash (binary32 survives PLY's and glTF's bytes
+# and the 9 significant digits of OBJ and OFF exactly), with the level's
+# vertex and triangle counts.
 set(golden ${SOURCE}/tests/golden/v1/bordered-grid-3-levels)
 file(STRINGS ${golden}.hashes recorded)
 execute_process(COMMAND ${DBSS} info --hashes ${golden}.dbss OUTPUT_VARIABLE info_lines RESULT_VARIABLE rc)
@@ -240,7 +242,7 @@ foreach(hash ${recorded})
     message(FATAL_ERROR "info --hashes has no level ${l} line with the recorded hash ${hash}:\n${info_lines}")
   endif()
   set(want "vertices ${CMAKE_MATCH_1} triangles ${CMAKE_MATCH_2} fnv1a64 ${hash}")
-  foreach(ext ply obj off)
+  foreach(ext ply obj off glb gltf)
     expect_run(0 "level ${l}" ${DBSS} decode ${golden}.dbss -o ${WORK}/geometry.${ext} --level ${l})
     execute_process(COMMAND ${MESH_HASH} ${WORK}/geometry.${ext} OUTPUT_VARIABLE got OUTPUT_STRIP_TRAILING_WHITESPACE)
     if(NOT got STREQUAL want)
@@ -249,3 +251,70 @@ foreach(hash ${recorded})
   endforeach()
   math(EXPR l "${l} + 1")
 endforeach()
+
+# `dbss export`: every level of a golden file in one GLB (and one .gltf),
+# each level of detail stored as `dbss decode` gives it: gltf_lods lists the
+# scene's node and then its MSFT_lod levels, finest first, each with the
+# level's recorded hash and counts.  The files stay in ${WORK} for the glTF
+# validator step of scripts/test.sh.
+foreach(name bordered-grid-3-levels torus-4-levels)
+  set(golden ${SOURCE}/tests/golden/v1/${name})
+  file(STRINGS ${golden}.hashes recorded)
+  execute_process(COMMAND ${DBSS} info --hashes ${golden}.dbss OUTPUT_VARIABLE info_lines)
+  list(LENGTH recorded n)
+  math(EXPR finest "${n} - 1")
+  set(want "")
+  foreach(l RANGE ${finest} 0 -1)
+    list(GET recorded ${l} hash)
+    string(REGEX MATCH "level ${l} vertices [0-9]+ triangles [0-9]+" counts "${info_lines}")
+    set(want "${want}${counts} indices uint16 fnv1a64 ${hash}\n")
+  endforeach()
+  foreach(ext glb gltf)
+    expect_run(0 "levels 0..${finest} " ${DBSS} export ${golden}.dbss -o ${WORK}/export-${name}.${ext})
+    execute_process(COMMAND ${GLTF_LODS} ${WORK}/export-${name}.${ext} OUTPUT_VARIABLE got RESULT_VARIABLE rc)
+    if(NOT rc EQUAL 0 OR NOT got STREQUAL want)
+      message(FATAL_ERROR "export ${name}.${ext}: levels of detail\n${got}\nexpected\n${want}")
+    endif()
+  endforeach()
+endforeach()
+# A range: the finest of it in the scene, the rest after it; one level alone.
+expect_run(0 "levels 1..2 " ${DBSS} export ${golden}.dbss -o ${WORK}/export-1-2.glb --levels 1..2)
+execute_process(COMMAND ${GLTF_LODS} ${WORK}/export-1-2.glb OUTPUT_VARIABLE got)
+if(NOT got MATCHES "^level 2 vertices [0-9]+ triangles [0-9]+ indices uint16 fnv1a64 [0-9a-f]+\nlevel 1 vertices [^\n]*\n$")
+  message(FATAL_ERROR "export --levels 1..2 wrote:\n${got}")
+endif()
+expect_run(0 "levels 3..3 " ${DBSS} export ${golden}.dbss -o ${WORK}/export-3.glb --levels 3)
+# --draco: the coarser levels Draco-compressed (the validator checks the
+# file's structure; io_tests decodes the Draco levels), a smaller file.
+expect_run(0 "levels 0..4 " ${DBSS} export ${golden}.dbss -o ${WORK}/export-draco.glb --draco 12)
+file(SIZE ${WORK}/export-draco.glb draco_size)
+file(SIZE ${WORK}/export-torus-4-levels.glb plain_size)
+if(NOT draco_size LESS plain_size)
+  message(FATAL_ERROR "export --draco 12 wrote ${draco_size} bytes, the plain export ${plain_size}")
+endif()
+expect_run(1 "uses Draco-compressed meshes" ${DBSS} encode ${WORK}/export-draco.glb -o ${WORK}/x.dbss)
+expect_run(1 "--draco needs a whole number" ${DBSS} export ${golden}.dbss -o ${WORK}/x.glb --draco 2)
+expect_run(0 "usage: dbss export" ${DBSS} export --help)
+expect_run(1 "no output file" ${DBSS} export ${golden}.dbss)
+expect_run(1 "must be a .glb or .gltf file" ${DBSS} export ${golden}.dbss -o ${WORK}/x.ply)
+expect_run(1 "--levels needs A..B" ${DBSS} export ${golden}.dbss -o ${WORK}/x.glb --levels 3..1)
+expect_run(1 "--levels needs A..B" ${DBSS} export ${golden}.dbss -o ${WORK}/x.glb --levels 1..x)
+expect_run(1 "level 5 is not in the file" ${DBSS} export ${golden}.dbss -o ${WORK}/x.glb --levels 0..5)
+expect_run(1 "${WORK}/missing.dbss: cannot open" ${DBSS} export ${WORK}/missing.dbss -o ${WORK}/x.glb)
+if(EXISTS ${WORK}/x.glb)
+  message(FATAL_ERROR "a failed export left ${WORK}/x.glb behind")
+endif()
+# A cut file exports the levels verified before the cut, with a warning;
+# asking for a later level fails.
+file(SIZE ${golden}.dbss n)
+if(HEAD)
+  math(EXPR bytes "${n} * 3 / 4")
+  execute_process(COMMAND ${HEAD} -c ${bytes} ${golden}.dbss OUTPUT_FILE ${WORK}/cut-torus.dbss)
+  expect_run(0 "warning: .*truncated" ${DBSS} export ${WORK}/cut-torus.dbss -o ${WORK}/export-cut.glb)
+  expect_run(1 "level 4 is not available" ${DBSS} export ${WORK}/cut-torus.dbss -o ${WORK}/x.glb --levels 0..4)
+endif()
+# glTF in: a damaged GLB is refused by name.
+# (removed after, so only files dbss wrote are left for the validator).
+file(WRITE ${WORK}/bad.glb "glTF not really")
+expect_run(1 "${WORK}/bad.glb: not a valid glTF file" ${DBSS} encode ${WORK}/bad.glb -o ${WORK}/x.dbss)
+file(REMOVE ${WORK}/bad.glb)

@@ -8,6 +8,7 @@
 
 #include "dbss/format/reader.h"
 #include "decode.h"
+#include "export.h"
 #include "info.h"
 #ifdef DBSS_HAVE_ENCODER
 #include "compare.h"
@@ -23,7 +24,8 @@ constexpr const char* kUsage =
     "\n"
     "commands:\n"
     "  encode INPUT -o OUT.dbss   reconstruct a point cloud or mesh and write it\n"
-    "  decode IN.dbss -o OUT      one level as a .ply, .obj, .off or .stl mesh\n"
+    "  decode IN.dbss -o OUT      one level as a .ply, .obj, .off, .stl, .glb or .gltf mesh\n"
+    "  export IN.dbss -o OUT.glb  levels A..B as glTF levels of detail (MSFT_lod) in one file\n"
     "  info IN.dbss [--json|--hashes]  chunks, sizes, per-level counts, steps, checks; --hashes: per-level hashes\n"
     "  compare INPUT [--json]     sizes and errors per level: dbss vs full-vertex DSS vs Draco\n"
     "\n"
@@ -50,6 +52,7 @@ int main(int argc, char** argv) {
   try {
     if (cmd == "info") return dbss::tools::run_info(args);
     if (cmd == "decode") return dbss::tools::run_decode(args);
+    if (cmd == "export") return dbss::tools::run_export(args);
 #ifdef DBSS_HAVE_ENCODER
     if (cmd == "encode") return dbss::tools::run_encode(args);
     if (cmd == "compare") return dbss::tools::run_compare(args);

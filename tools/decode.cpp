@@ -14,11 +14,12 @@ namespace dbss::tools {
 
 namespace {
 constexpr const char* kHelp =
-    "usage: dbss decode IN.dbss -o OUT.{ply,obj,off,stl} [--level L]\n"
+    "usage: dbss decode IN.dbss -o OUT.{ply,obj,off,stl,glb,gltf} [--level L]\n"
     "\n"
     "Decodes one level of a .dbss file to a mesh file.\n"
     "\n"
-    "  -o, --output FILE   mesh to write (.ply binary, .obj, .off or .stl binary), replaced atomically\n"
+    "  -o, --output FILE   mesh to write (.ply binary, .obj, .off, .stl binary, .glb or\n"
+    "                      .gltf), replaced atomically\n"
     "  --level L           level to decode, 0 = control mesh (default: the finest\n"
     "                      level in the file)\n"
     "\n"

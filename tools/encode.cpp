@@ -24,7 +24,8 @@ constexpr const char* kHelpHead =
     "usage: dbss encode INPUT -o OUT.dbss [options]\n"
     "\n"
     "Reconstructs a surface from the points of INPUT (.ply, .obj, .off, .xyz,\n"
-    ".stl; mesh files give their vertices) and writes it as a .dbss file.\n"
+    ".stl, .glb, .gltf; mesh files give their vertices) and writes it as a .dbss\n"
+    "file.\n"
     "\n"
     "  -o, --output FILE      the .dbss to write (replaced atomically)\n"
     ;

@@ -17,6 +17,8 @@ constexpr GeometryFormat kFormats[] = {
     {{"obj"}, parse_obj, write_obj},
     {{"off"}, parse_off, write_off},
     {{"stl"}, parse_stl, write_stl},
+    {{"glb"}, parse_gltf, write_glb},
+    {{"gltf"}, parse_gltf, write_gltf},
     {{"xyz", "pts", "txt"}, parse_xyz, nullptr},
 };
 
@@ -96,7 +98,9 @@ Status write_mesh(const std::string& path, const TriangleMesh& mesh) {
   const GeometryFormat* f = find_format(lower_extension(path));
   if (f == nullptr || f->write_mesh == nullptr)
     return Status(ErrorCode::invalid_argument, path + ": unknown mesh format (expected " + writable_extensions() + ")");
-  const std::string bytes = f->write_mesh(mesh);
+  auto made = f->write_mesh(mesh);
+  if (!made.ok()) return Status(made.status().code(), path + ": " + made.status().message());
+  const std::string& bytes = made.value();
   return io::write_file_atomic(path, std::span<const uint8_t>(reinterpret_cast<const uint8_t*>(bytes.data()), bytes.size()));
 }
 

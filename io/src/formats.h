@@ -11,8 +11,8 @@
 namespace dbss::io_detail {
 
 using GeometryReader = Result<GeometryFile> (*)(const std::string& name, std::string_view bytes);
-// The whole file's bytes for a mesh.
-using MeshWriter = std::string (*)(const TriangleMesh& mesh);
+// The whole file's bytes for a mesh, or why it cannot be written.
+using MeshWriter = Result<std::string> (*)(const TriangleMesh& mesh);
 
 struct GeometryFormat {
   std::string_view extensions[3];  // lower case, without the dot; unused ones empty
@@ -29,9 +29,12 @@ Result<GeometryFile> parse_obj(const std::string& name, std::string_view text);
 Result<GeometryFile> parse_off(const std::string& name, std::string_view text);
 Result<GeometryFile> parse_stl(const std::string& name, std::string_view bytes);
 Result<GeometryFile> parse_xyz(const std::string& name, std::string_view text);
-std::string write_ply(const TriangleMesh& mesh);
-std::string write_obj(const TriangleMesh& mesh);
-std::string write_off(const TriangleMesh& mesh);
-std::string write_stl(const TriangleMesh& mesh);
+Result<GeometryFile> parse_gltf(const std::string& name, std::string_view bytes);
+Result<std::string> write_ply(const TriangleMesh& mesh);
+Result<std::string> write_obj(const TriangleMesh& mesh);
+Result<std::string> write_off(const TriangleMesh& mesh);
+Result<std::string> write_stl(const TriangleMesh& mesh);
+Result<std::string> write_glb(const TriangleMesh& mesh);
+Result<std::string> write_gltf(const TriangleMesh& mesh);
 
 }  // namespace dbss::io_detail

@@ -49,7 +49,7 @@ Result<GeometryFile> parse_obj(const std::string& name, std::string_view text) {
   return g;
 }
 
-std::string write_obj(const TriangleMesh& m) {
+Result<std::string> write_obj(const TriangleMesh& m) {
   std::string out = "# dbss\n";
   char b[96];
   for (size_t v = 0; v < m.vertex_count(); ++v) {

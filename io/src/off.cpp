@@ -87,7 +87,7 @@ Result<GeometryFile> parse_off(const std::string& name, std::string_view text) {
   return g;
 }
 
-std::string write_off(const TriangleMesh& m) {
+Result<std::string> write_off(const TriangleMesh& m) {
   std::string out = "OFF\n" + std::to_string(m.vertex_count()) + " " + std::to_string(m.triangle_count()) + " 0\n";
   char b[96];
   for (size_t v = 0; v < m.vertex_count(); ++v) {

@@ -271,7 +271,7 @@ Result<GeometryFile> parse_ply(const std::string& name, std::string_view bytes) 
 }
 
 // Binary little-endian: the smallest and fastest to read back.
-std::string write_ply(const TriangleMesh& m) {
+Result<std::string> write_ply(const TriangleMesh& m) {
   std::string out = "ply\nformat binary_little_endian 1.0\ncomment dbss\nelement vertex " + std::to_string(m.vertex_count()) +
                     "\nproperty float x\nproperty float y\nproperty float z\nelement face " +
                     std::to_string(m.triangle_count()) + "\nproperty list uchar uint vertex_indices\nend_header\n";

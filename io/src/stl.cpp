@@ -71,7 +71,7 @@ Result<GeometryFile> parse_stl(const std::string& name, std::string_view bytes) 
 
 // Binary: 80-byte header, triangle count, then per triangle a zero normal
 // (readers recompute it), three corners and a zero attribute word.
-std::string write_stl(const TriangleMesh& m) {
+Result<std::string> write_stl(const TriangleMesh& m) {
   std::string out(80, ' ');
   out.replace(0, 4, "dbss");
   auto u32 = [&](uint32_t u) {

@@ -60,7 +60,7 @@ std::vector<std::array<float, 9>> corner_sets(const TriangleMesh& m) {
 
 TEST_CASE("every writable format reads back the same triangles") {
   const TriangleMesh m = octahedron();
-  for (const char* ext : {"ply", "obj", "off", "stl"}) {
+  for (const char* ext : {"ply", "obj", "off", "stl", "glb", "gltf"}) {
     INFO(ext);
     const std::string path = (scratch() / (std::string("octa.") + ext)).string();
     REQUIRE(write_mesh(path, m).ok());
