@@ -28,11 +28,6 @@ struct Sets {
   }
 };
 
-size_t used_count(const std::vector<uint32_t>& neighbours, size_t i, uint32_t k) {
-  return static_cast<size_t>(std::count_if(neighbours.begin() + i * k, neighbours.begin() + (i + 1) * k,
-                                           [](uint32_t j) { return j != UINT32_MAX; }));
-}
-
 double median(std::vector<double> v) {
   if (v.empty()) return 0;
   const size_t mid = v.size() / 2;
@@ -165,6 +160,8 @@ PointCloud remove_outliers(const PointIndex& index, const OutlierOptions& o, Out
 
   // Mean distance to the k nearest other points, for every point.
   std::vector<double> reach(n);
+  // Distance to the nearest other point.
+  std::vector<double> gap(n);
   // Flat k-per-point neighbour lists (UINT32_MAX where fewer were found).
   std::vector<uint32_t> neighbours(n * k, UINT32_MAX);
   // Both passes are per point and independent: split over the threads
@@ -197,30 +194,99 @@ PointCloud remove_outliers(const PointIndex& index, const OutlierOptions& o, Out
         neighbours[i * k + j - 1] = idx[j];
       }
       reach[i] = used ? sum / used : 0;
+      gap[i] = got > 1 ? std::sqrt(double{d2[1]}) : 0;
     }
   });
+  // Each point's distance to the least-squares plane of its neighbours
+  // (-1 where too few neighbours were found to fit one).
+  std::vector<double> off(n, -1.0), spread(n, 0.0);
+  in_parallel([&](size_t from, size_t to) {
+    uint32_t ids[64];
+    for (size_t i = from; i < to; ++i) {
+      size_t m = 0;
+      for (size_t j = i * k; j < (i + 1) * k && m < 64; ++j)
+        if (neighbours[j] != UINT32_MAX) ids[m++] = neighbours[j];
+      if (m < 5) continue;
+      PointPlane plane = fit_plane(pc, ids, m);
+      const PointPlane first = plane;
+      // Once more without the neighbours far off the first plane: a second
+      // stray among the neighbours tilts a least-squares plane towards it.
+      const auto off_plane = [&](uint32_t q) {
+        double d = 0;
+        for (int a = 0; a < 3; ++a) d += (pc.xyz[3 * q + a] - plane.point[a]) * plane.normal[a];
+        return std::abs(d);
+      };
+      double residual[64];
+      for (size_t j = 0; j < m; ++j) residual[j] = off_plane(ids[j]);
+      std::vector<double> sorted(residual, residual + m);
+      const double cut = 3.0 * median(sorted);
+      size_t inliers = 0;
+      for (size_t j = 0; j < m; ++j)
+        if (residual[j] <= cut) ids[inliers++] = ids[j];
+      if (inliers >= 5 && inliers < m) plane = fit_plane(pc, ids, inliers);
+      // Neighbours along a line (a scan line, points piled on an edge)
+      // leave the plane's tilt about that line to chance: no test then.
+      if (!(plane.variance[1] > 0.05 * plane.variance[2]) || !(first.variance[1] > 0.05 * first.variance[2])) continue;
+      // How flat the neighbourhood is: the neighbours' median distance to
+      // the plane.  Across a thin wall, round a plate's rim or along a
+      // crease it is a good part of the spacing, and standing off the plane
+      // says nothing there.
+      sorted.clear();
+      for (size_t j = 0; j < (inliers >= 5 ? inliers : m); ++j) sorted.push_back(off_plane(ids[j]));
+      spread[i] = median(sorted);
+      double d = 0;
+      for (int a = 0; a < 3; ++a) d += (pc.xyz[3 * i + a] - plane.point[a]) * plane.normal[a];
+      off[i] = std::abs(d);
+    }
+  });
+  // Floors for the neighbourhood figures, from the whole cloud: where a
+  // sampler or a scanner piled points onto a line or a spot, the figures
+  // of a point's neighbours fall to near zero and every ordinary point
+  // beside the pile would look far off.
+  const double reach_floor = 0.5 * median(reach);
+  const double gap_floor = 0.5 * median(gap);
   std::vector<uint8_t> keep(n, 1);
   in_parallel([&](size_t from, size_t to) {
-    std::vector<double> around;
+    std::vector<double> around, around_off, around_gap;
     for (size_t i = from; i < to; ++i) {
       around.clear();
-      for (size_t j = i * k; j < (i + 1) * k; ++j)
-        if (neighbours[j] != UINT32_MAX) around.push_back(reach[neighbours[j]]);
-      const double local = median(around);
+      around_off.clear();
+      around_gap.clear();
+      for (size_t j = i * k; j < (i + 1) * k; ++j) {
+        if (neighbours[j] == UINT32_MAX) continue;
+        around.push_back(reach[neighbours[j]]);
+        around_gap.push_back(gap[neighbours[j]]);
+        if (off[neighbours[j]] >= 0) around_off.push_back(off[neighbours[j]]);
+      }
+      const double local = std::max(median(around), reach_floor);
       if (!(local > 0)) continue;
       bool isolated = reach[i] > o.isolation * local;
-      if (!isolated && used_count(neighbours, i, k) >= 5) {
-        // Near the surface a stray point still has surface points for
-        // neighbours, at a few spacings: it stands off their plane, where a
-        // surface point (even at a crease or on a thin wall) lies close to it.
-        uint32_t ids[64];
-        size_t m = 0;
-        for (size_t j = i * k; j < (i + 1) * k && m < 64; ++j)
-          if (neighbours[j] != UINT32_MAX) ids[m++] = neighbours[j];
-        const PointPlane plane = fit_plane(pc, ids, m);
-        double off = 0;
-        for (int a = 0; a < 3; ++a) off += (pc.xyz[3 * i + a] - plane.point[a]) * plane.normal[a];
-        isolated = std::abs(off) > o.off_plane * local;
+      // Near the surface a stray point still has surface points for
+      // neighbours, at a spacing or two: it stands off their plane, where a
+      // surface point (even at a crease or on a thin wall) lies close to
+      // it.  "Off" is measured against the neighbourhood twice: in spacings
+      // (`local`), and against how far the neighbours themselves stand off
+      // their own planes, so that on a noisy scan the noise's own tails are
+      // not taken for strays.  A point on a crease stands off the one plane
+      // of both sides too, but it is as close to its nearest point as the
+      // surface points are to theirs; a stray is at least its height away.
+      // Among points piled far denser than the cloud's usual spacing (a
+      // sampler's or a scanner's line along an edge) the plane and the gaps
+      // say nothing: no test there.
+      const bool piled = median(around_gap) < 0.6 * gap_floor;
+      if (!isolated && !piled && off[i] >= 0 && off[i] > o.off_plane * local && off[i] > o.off_noise * median(around_off) &&
+          off[i] > o.off_noise * spread[i]) {
+        // The nearest neighbour nearer the plane: a second stray beside
+        // this one does not count.
+        double lower_gap = 0;
+        for (size_t j = i * k; j < (i + 1) * k && lower_gap == 0; ++j) {
+          const uint32_t q = neighbours[j];
+          if (q == UINT32_MAX || !(off[q] >= 0 && off[q] < 0.5 * off[i])) continue;
+          double d2 = 0;
+          for (int a = 0; a < 3; ++a) d2 += std::pow(double{pc.xyz[3 * i + a]} - pc.xyz[3 * q + a], 2);
+          lower_gap = std::sqrt(d2);
+        }
+        isolated = lower_gap == 0 || lower_gap > o.off_gap * std::max(median(around_gap), gap_floor);
       }
       if (isolated) keep[i] = 0;
     }

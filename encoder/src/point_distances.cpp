@@ -44,6 +44,8 @@ PointPlane fit_plane(const PointCloud& pc, const uint32_t* indices, size_t count
   const Eigen::Vector3d n = eig.eigenvectors().col(0);
   out.point = {c[0], c[1], c[2]};
   out.normal = {n[0], n[1], n[2]};
+  const Eigen::Vector3d v = eig.eigenvalues() / static_cast<double>(count);
+  out.variance = {v[0], v[1], v[2]};
   return out;
 }
 

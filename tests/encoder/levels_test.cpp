@@ -58,7 +58,12 @@ constexpr Measured kPointsToSurface[] = {
     {"triple torus", {4.55e-3, 1.89e-3, 6.55e-4, 2.46e-4}},
     {"cup (U shape)", {9.60e-4, 4.44e-3, 2.46e-3, 1.29e-3}},
     {"two spheres", {1.58e-3, 5.43e-4, 1.99e-4, 8.02e-5}},
-    {"thin plate", {1.11e-4, 2.84e-3, 3.65e-3, 3.15e-3}},
+    // The plate (0.04 thick) is the one shape whose control mesh moves with
+    // any small change of its points: level 0 measured 1.11e-4 first,
+    // 1.79e-4 by 51be302, 2.5e-4 once the off-plane outlier test took 6 of
+    // its 20,000 points (1.82e-4 with none taken).  Its own figure here is
+    // 1.79e-4, so the bound is twice the middle of that range.
+    {"thin plate", {1.79e-4, 2.84e-3, 3.65e-3, 3.15e-3}},
 };
 constexpr double kMargin = 2.0;
 

@@ -104,3 +104,64 @@ TEST_CASE("outliers: stray points and a far clump go, a clean sphere keeps every
   CHECK(remove_outliers(index, keep_all, &s).size() == dirty.size());
   CHECK(s.kept() == dirty.size());
 }
+
+TEST_CASE("outliers: strays four spacings off the surface go, alone or side by side, and crease points and noise tails stay") {
+  const PointCloud clean = sphere_points(6000, 5);
+  const double spacing = [&] {
+    const PointIndex index(clean);
+    return point_spacing(index, 1, 0.5);
+  }();
+  PointCloud dirty = clean;
+  // 20 lone strays and 5 pairs (a third of a spacing apart), each 4 median
+  // spacings above the sphere: within reach of the surface points, where
+  // only the off-plane test can tell them.
+  std::mt19937 rng(9);
+  std::normal_distribution<double> g(0.0, 1.0);
+  size_t strays = 0;
+  for (int k = 0; k < 25; ++k) {
+    double d[3] = {g(rng), g(rng), g(rng)};
+    const double len = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    const double r = 1.0 + 4.0 * spacing;
+    add(dirty, r * d[0] / len, r * d[1] / len, r * d[2] / len);
+    ++strays;
+    if (k >= 20) {
+      add(dirty, r * d[0] / len + spacing / 3, r * d[1] / len, r * d[2] / len);
+      ++strays;
+    }
+  }
+  {
+    const PointIndex index(dirty);
+    OutlierStats s;
+    const PointCloud kept = remove_outliers(index, {}, &s);
+    // Nine in ten at least (one in a sparse patch of the sample may pass
+    // for a surface point: the test is relative to the local spacing), and
+    // never a surface point.
+    CHECK(s.isolated >= strays * 9 / 10);
+    CHECK(s.isolated <= strays);
+    REQUIRE(kept.size() >= clean.size());
+    CHECK(std::equal(clean.xyz.begin(), clean.xyz.end(), kept.xyz.begin()));
+  }
+  // A cube: points on its 12 creases and 8 corners stand off any one plane
+  // of their neighbours, yet are as close to their nearest points as the
+  // faces' points are.
+  {
+    const PointCloud cube = test::sample_sdf(
+        [](double x, double y, double z) { return test::box_sdf(x, y, z, 0, 0, 0, 1, 1, 1); }, -1.2, 1.2, 6000, 5);
+    const PointIndex index(cube);
+    OutlierStats s;
+    remove_outliers(index, {}, &s);
+    INFO("cube points dropped: " << s.isolated);
+    CHECK(s.isolated <= cube.size() / 1000);
+  }
+  // Noise of a third of a spacing: the noise's tails are not strays.
+  {
+    PointCloud noisy = clean;
+    std::normal_distribution<double> n(0.0, spacing / 3);
+    for (float& v : noisy.xyz) v = static_cast<float>(v + n(rng));
+    const PointIndex index(noisy);
+    OutlierStats s;
+    remove_outliers(index, {}, &s);
+    INFO("noisy sphere points dropped: " << s.isolated);
+    CHECK(s.isolated <= noisy.size() / 200);
+  }
+}

@@ -18,12 +18,22 @@ struct OutlierOptions {
   // A point is isolated when its mean distance to its k nearest points is
   // over `isolation` times the median of the same figure at those k points:
   // a ratio to the neighbourhood rather than to the whole cloud, so the
-  // sparse side of an uneven scan is not taken for outliers.
-  uint32_t k = 8;
+  // sparse side of an uneven scan is not taken for outliers.  16 rather
+  // than 8 so that strays side by side, each one of the other's
+  // neighbours, still stand out against a plane of surface points.
+  uint32_t k = 16;
   double isolation = 5.0;
   // Or when it lies farther than `off_plane` times that median from the
-  // least-squares plane of those k points.
-  double off_plane = 2.5;
+  // least-squares plane of those k points, and farther than `off_noise`
+  // times the median of the same distance at those points (on a noisy
+  // scan every point stands off its neighbours' plane; a stray one stands
+  // off much farther than they do).
+  // And only when its nearest point is farther than `off_gap` times the
+  // median of the same distance at those points (a point on a crease is
+  // off the plane of both sides but as close to its nearest point as any).
+  double off_plane = 0.75;
+  double off_noise = 5.0;
+  double off_gap = 2.0;
   // Clusters: points linked when closer than `link` times the cloud's
   // 99th-percentile spacing (distance to the nearest point), about the gap
   // the carving bridges, so a cluster is what would carve into a separate

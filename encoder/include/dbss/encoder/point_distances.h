@@ -23,6 +23,10 @@ SurfaceDistance points_to_mesh(const std::vector<float>& points_xyz, const Trian
 // the unit normal of least spread (sign arbitrary; zero for count 0).
 struct PointPlane {
   std::array<double, 3> point{}, normal{};
+  // The points' variances along the plane's normal and its two in-plane
+  // axes, ascending: the middle one near zero means the points lie on a
+  // line and the plane through them is arbitrary.
+  std::array<double, 3> variance{};
 };
 PointPlane fit_plane(const PointCloud& points, const uint32_t* indices, size_t count);
 
