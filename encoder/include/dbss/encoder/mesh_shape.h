@@ -1,0 +1,67 @@
+// Control-mesh shaping after QEM: edge flips toward valence 6 and away from
+// slivers, and a tangential relaxation of the vertices around slivers that
+// keeps them on the points.  The Modified Butterfly's extraordinary-vertex
+// stencils overshoot around slivers and high valences (a fan of ripples on
+// a flat face at level 1), and the vertex normals that carry the
+// displacements swing with them.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+#include "dbss/decoder/mesh.h"
+#include "dbss/encoder/point_index.h"
+
+namespace dbss {
+
+// Triangle shape quality 4*sqrt(3)*area / (sum of squared edge lengths):
+// 1 for an equilateral triangle, 0 for a degenerate one.
+double triangle_quality(const TriangleMesh& m, size_t triangle);
+
+// The figures shaping is judged by.
+struct MeshShape {
+  double poor_share = 0;     // share of triangles with quality under kPoorQuality
+  double min_quality = 0;    // the worst triangle's
+  uint32_t max_valence = 0;  // the most edges at one vertex
+};
+inline constexpr double kPoorQuality = 0.2;
+MeshShape mesh_shape(const TriangleMesh& m);
+
+struct ShapeOptions {
+  bool enabled = true;
+  int rounds = 6;  // flip passes, each followed by a relaxation
+  // Degrees between the normals of an edge's two triangles above which the
+  // edge is never flipped, and the normals of a vertex's triangles above
+  // which it is never moved: sharp features stay where QEM put them.
+  double max_bend = 25;
+  // Vertices of triangles under this quality are relaxed (the rest keep
+  // QEM's placement, which follows curvature); 0: flips only.
+  double relax_below = 0.4;
+};
+
+struct ShapeStats {
+  MeshShape before, after;
+  size_t flips = 0;       // edges flipped
+  size_t moves = 0;       // vertex moves kept by the relaxation
+  size_t rounds_undone = 0;  // rounds thrown away because triangles crossed
+};
+
+// Improves `mesh` in place (an oriented manifold, closed or with boundary):
+//  - flips an interior edge when that lowers the valence excess
+//    sum((valence - 6)^2) (4 on the boundary) of its four vertices without
+//    making a sliver, or when it raises the worse of its two triangles'
+//    quality; never when the edge's two triangles or the flipped pair bend
+//    by more than max_bend, nor when the flipped edge exists already (which
+//    would make a non-manifold edge), nor below valence 3;
+//  - moves each interior vertex of a triangle under relax_below quality
+//    half way toward its neighbours' mean, within its tangent plane, then
+//    onto the least-squares plane of its 8 nearest points (`points` may be
+//    null: the move stays in the tangent plane).  A move that turns a
+//    triangle over or folds an edge is not made; boundary vertices and
+//    vertices on sharp features never move.
+// Topology (genus, components, boundary loops) is unchanged by
+// construction; a round after which more triangle pairs cross than before
+// the pass is undone.  Deterministic (a fixed visiting order).
+ShapeStats improve_shape(TriangleMesh& mesh, const PointIndex* points, const ShapeOptions& options = {});
+
+}  // namespace dbss
