@@ -7,8 +7,8 @@
 // distance and the Hausdorff distance, both over the true mesh's diagonal.
 //
 // usage: shape_bench [--points N] [--levels L] [--samples S] [--skip-absent]
-//                    [--max-bend DEG] [--relax-below Q] [--rounds R] MESH_FILE...
-//   --max-bend, --relax-below, --rounds: the shaping run's ShapeOptions
+//                    [--max-bend DEG] [--flip-bend DEG] [--flip-slack S] [--relax-below Q] [--rounds R] MESH_FILE...
+//   --max-bend, --flip-bend, --flip-slack, --relax-below, --rounds: the shaping run's ShapeOptions
 //   --skip-absent: an absent mesh file exits 77 (ctest's skip) unless CI=true
 #include <chrono>
 #include <cmath>
@@ -56,6 +56,8 @@ int main(int argc, char** argv) {
     else if (a == "--samples" && i + 1 < argc) samples = std::strtoull(argv[++i], nullptr, 10);
     else if (a == "--skip-absent") skip_absent = true;
     else if (a == "--max-bend" && i + 1 < argc) shaping.max_bend = std::atof(argv[++i]);
+    else if (a == "--flip-bend" && i + 1 < argc) shaping.flip_bend = std::atof(argv[++i]);
+    else if (a == "--flip-slack" && i + 1 < argc) shaping.flip_slack = std::atof(argv[++i]);
     else if (a == "--relax-below" && i + 1 < argc) shaping.relax_below = std::atof(argv[++i]);
     else if (a == "--rounds" && i + 1 < argc) shaping.rounds = std::atoi(argv[++i]);
     else if (!a.empty() && a[0] == '-') return std::fprintf(stderr, "shape_bench: unknown option %s\n", a.c_str()), 1;

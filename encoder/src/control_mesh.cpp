@@ -347,13 +347,15 @@ Result<ControlMeshStages> build_control_mesh(const PointIndex& index, const Cont
   s.seconds.project = since(t);
   if (o.shape.enabled) {
     // Jumps onto the points move vertices by up to a point spacing
-    // sideways, a lot next to a short edge: flips only (the vertices stay on
-    // the points) mend the slivers that made.
+    // sideways, a lot next to a short edge (a sphere's slivers went from
+    // 0.2% to 1.2% of its triangles): flips, and moves from point to point,
+    // mend them with the vertices left on the points.
     t = Clock::now();
-    ShapeOptions flips_only = o.shape;
-    flips_only.relax_below = 0;
-    const ShapeStats again = improve_shape(s.control, &index, flips_only);
+    ShapeOptions on_points = o.shape;
+    on_points.snap = true;
+    const ShapeStats again = improve_shape(s.control, &index, on_points);
     s.shape_stats.flips += again.flips;
+    s.shape_stats.moves += again.moves;
     s.shape_stats.rounds_undone += again.rounds_undone;
     s.shape_stats.after = again.after;
     s.seconds.shape += since(t);

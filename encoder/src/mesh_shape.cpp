@@ -29,6 +29,9 @@ constexpr double kQualityFlipGain = 1.15;
 // Quality flips only for triangles this poor: above it QEM's choice of
 // diagonal, which follows the surface, is worth more than the shape.
 constexpr double kQualityFlipBelow = 0.35;
+// No flip takes a vertex over this valence (the target: the
+// butterfly's extraordinary stencils grow and overshoot with it).
+constexpr int kMaxValence = 10;
 
 double quality(V3 a, V3 b, V3 c) {
   const double e = dot(sub(b, a), sub(b, a)) + dot(sub(c, b), sub(c, b)) + dot(sub(a, c), sub(a, c));
@@ -42,11 +45,6 @@ V3 unit(V3 v) {
   if (!(l > 0)) return {0, 0, 0};
   return {v[0] / l, v[1] / l, v[2] / l};
 }
-
-// A flip must not take the surface farther from the points than this many
-// median point spacings beyond where the edge it replaces lay: QEM chose
-// its diagonals to follow the surface.
-constexpr double kFlipSlack = 0.5;
 
 // Distance from q to the least-squares plane of its 8 nearest points.
 double gap_to_points(const PointIndex& points, const V3& q) {
@@ -98,7 +96,7 @@ uint32_t third(const TriangleMesh& m, uint32_t f, uint32_t u, uint32_t v) {
 }
 
 // Tries the flip of the edge a->b of triangle f; says whether it was made.
-// `points` (may be null) with `slack`: see kFlipSlack.
+// `points` (may be null) with `slack`: see ShapeOptions::flip_slack.
 bool try_flip(TriangleMesh& m, FlipState& s, uint32_t f, uint32_t a, uint32_t b, double cos_bend, const PointIndex* points,
               double slack) {
   const auto twin = s.edge.find(key(b, a));
@@ -107,6 +105,7 @@ bool try_flip(TriangleMesh& m, FlipState& s, uint32_t f, uint32_t a, uint32_t b,
   const uint32_t c = third(m, f, a, b), d = third(m, g, a, b);
   if (c == d || s.edge.count(key(c, d)) || s.edge.count(key(d, c))) return false;  // would be a second c-d edge
   if (s.valence[a] <= 3 || s.valence[b] <= 3) return false;
+  if (std::max(s.valence[c], s.valence[d]) >= kMaxValence) return false;
   const V3 pa = pos(m, a), pb = pos(m, b), pc = pos(m, c), pd = pos(m, d);
   const V3 n1 = unit(cross(sub(pb, pa), sub(pc, pa))), n2 = unit(cross(sub(pa, pb), sub(pd, pb)));
   const V3 m1 = unit(cross(sub(pd, pa), sub(pc, pa))), m2 = unit(cross(sub(pb, pd), sub(pc, pd)));
@@ -161,7 +160,15 @@ size_t flip_pass(TriangleMesh& m, double cos_bend, const PointIndex* points, dou
   return flips;
 }
 
-size_t relax_pass(TriangleMesh& m, const PointIndex* points, double cos_bend, double relax_below) {
+// The worst quality of the triangles around v.
+double fan_quality(const TriangleMesh& m, const Adjacency& vt, uint32_t v) {
+  double q = 1;
+  for (uint32_t j = vt.offset[v]; j < vt.offset[v + 1]; ++j) q = std::min(q, triangle_quality(m, vt.index[j]));
+  return q;
+}
+
+// `snap`: the vertices move only onto points (see ShapeOptions::snap).
+size_t relax_pass(TriangleMesh& m, const PointIndex* points, double cos_bend, double relax_below, bool snap) {
   const Adjacency vt = vertex_triangles(m);
   const Adjacency adj = vertex_adjacency(m);
   const Rim rim = rim_neighbours(m);
@@ -195,16 +202,42 @@ size_t relax_pass(TriangleMesh& m, const PointIndex* points, double cos_bend, do
     for (int a = 0; a < 3; ++a) step[a] -= along * n[a];
     float to[3];
     for (int a = 0; a < 3; ++a) to[a] = static_cast<float>(p[a] + step[a]);
-    if (points != nullptr) {
+    bool on_points = snap;
+    if (points != nullptr && !snap) {
       // Back onto the surface of the points: the tangent plane of a curved
-      // surface leaves it by the square of the step.
+      // surface leaves it by the square of the step.  Where the points'
+      // plane leans away from the mesh (next to a thin part's rim, whose
+      // points join the fit) it is no surface: onto a point instead (on the
+      // thin plate of the tests the plane had doubled level 0's error).
       const size_t found = points->nearest_k(to, kNear, near, dist2);
       if (found >= 3) {
         const PointPlane plane = fit_plane(points->points(), near, found);
         double off = 0;
         for (int a = 0; a < 3; ++a) off += (to[a] - plane.point[a]) * plane.normal[a];
-        for (int a = 0; a < 3; ++a) to[a] = static_cast<float>(to[a] - off * plane.normal[a]);
+        if (std::abs(dot(plane.normal, n)) < cos_bend) on_points = true;
+        else
+          for (int a = 0; a < 3; ++a) to[a] = static_cast<float>(to[a] - off * plane.normal[a]);
       }
+    }
+    if (on_points && points != nullptr) {
+      // Onto the point near the target that gives the fan its best worst
+      // triangle, if that beats where the vertex is: it stays on the points.
+      const size_t found = points->nearest_k(to, kNear, near, dist2);
+      const float old[3] = {p[0], p[1], p[2]};
+      double best = fan_quality(m, vt, v);
+      size_t chosen = found;
+      for (size_t i = 0; i < found; ++i) {
+        const float* q = &points->points().xyz[3 * size_t{near[i]}];
+        if (!move_keeps_orientation(m, vt, v, q)) continue;
+        for (int a = 0; a < 3; ++a) p[a] = q[a];
+        const double fq = fan_quality(m, vt, v);
+        if (fq > best && !folded_around(m, vt, v)) best = fq, chosen = i;
+        for (int a = 0; a < 3; ++a) p[a] = old[a];
+      }
+      if (chosen == found) continue;
+      for (int a = 0; a < 3; ++a) p[a] = points->points().xyz[3 * size_t{near[chosen]} + a];
+      ++moves;
+      continue;
     }
     if (!move_keeps_orientation(m, vt, v, to)) continue;
     const bool folded_before = folded_around(m, vt, v);
@@ -246,12 +279,13 @@ ShapeStats improve_shape(TriangleMesh& m, const PointIndex* points, const ShapeO
   st.before = mesh_shape(m);
   if (o.enabled && m.triangle_count() > 0) {
     const double cos_bend = std::cos(o.max_bend * kPi / 180);
+    const double cos_flip = std::cos((points != nullptr ? o.flip_bend : o.max_bend) * kPi / 180);
     const size_t crossings = count_self_intersections(m);
-    const double slack = points != nullptr ? kFlipSlack * point_spacing(*points, 1, 0.5) : 0;
+    const double slack = points != nullptr ? o.flip_slack * point_spacing(*points, 1, 0.5) : 0;
     for (int r = 0; r < o.rounds; ++r) {
       const TriangleMesh saved = m;
-      const size_t flips = flip_pass(m, cos_bend, points, slack);
-      const size_t moves = relax_pass(m, points, cos_bend, o.relax_below);
+      const size_t flips = flip_pass(m, cos_flip, points, slack);
+      const size_t moves = relax_pass(m, points, cos_bend, o.relax_below, o.snap);
       if (count_self_intersections(m) > crossings) {
         m = saved;
         ++st.rounds_undone;

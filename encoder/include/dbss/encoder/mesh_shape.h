@@ -30,13 +30,28 @@ MeshShape mesh_shape(const TriangleMesh& m);
 struct ShapeOptions {
   bool enabled = true;
   int rounds = 6;  // flip passes, each followed by a relaxation
-  // Degrees between the normals of an edge's two triangles above which the
-  // edge is never flipped, and the normals of a vertex's triangles above
-  // which it is never moved: sharp features stay where QEM put them.
+  // Degrees between a vertex's normal and one of its triangles' above
+  // which the vertex is never moved, and between the normals of an edge's
+  // two triangles above which it is never flipped when no points are
+  // given: sharp features stay where QEM put them.
   double max_bend = 25;
+  // The flips' limit when points are given: then a flip must also keep the
+  // surface on the points (its new edge's midpoint no farther from them
+  // than the old one's, plus flip_slack median point spacings; any slack
+  // let the control mesh drift: 0.5 raised the errors of every level),
+  // which is what tells a crease, where the new edge would cut the corner,
+  // from the bend of a coarse mesh on a curved surface (45 degrees around a
+  // thin tube).
+  double flip_bend = 45;
+  double flip_slack = 0;
   // Vertices of triangles under this quality are relaxed (the rest keep
   // QEM's placement, which follows curvature); 0: flips only.
   double relax_below = 0.4;
+  // Relaxed vertices move onto points only: the one of the 8 nearest to
+  // the relaxed position that gives the vertex's triangles the best worst
+  // quality, if better than now (for a mesh already on the points; the
+  // jumps of projection leave slivers next to short edges).
+  bool snap = false;
 };
 
 struct ShapeStats {
