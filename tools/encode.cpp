@@ -8,6 +8,7 @@
 #include <string>
 
 #include "dbss/encoder/encode.h"
+#include "dbss/encoder/mesh_shape.h"
 #include "dbss/encoder/point_index.h"
 #include "dbss/encoder/cell_dump.h"
 #include "dbss/encoder/point_distances.h"
@@ -183,8 +184,9 @@ int run_encode(const std::vector<std::string_view>& args) {
     // projected, Draco-quantized).
     const ShapeStats& sh = st.shape_stats;
     const MeshShape final_shape = mesh_shape(e.control);
-    char notes[192];
-    std::snprintf(notes, sizeof notes, "%zu flips, %zu moves; quality < %.1f: %.1f%% -> %.1f%% of triangles, max valence %u -> %u",
+    char notes[224];
+    std::snprintf(notes, sizeof notes,
+                  "%zu flips, %zu moves; triangles under quality %.1f: QEM's %.1f%%, the control mesh's %.1f%%; max valence %u, %u",
                   sh.flips, sh.moves, kPoorQuality, 100 * sh.before.poor_share, 100 * final_shape.poor_share,
                   sh.before.max_valence, final_shape.max_valence);
     row("shaping", st.seconds.shape, &st.control, options.control.shape.enabled ? notes : "off");
