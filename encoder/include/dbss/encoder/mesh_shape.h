@@ -37,8 +37,9 @@ struct ShapeOptions {
   double max_bend = 25;
   // The flips' limit when points are given: then a flip must also keep the
   // surface on the points (its new edge's midpoint no farther from them
-  // than the old one's, plus flip_slack median point spacings; any slack
-  // let the control mesh drift: 0.5 raised the errors of every level),
+  // than the old one's, plus flip_slack median point spacings; slack lets
+  // the surface drift: on the eight 0.5 took every level 2-15% farther from
+  // the truth than 0),
   // which is what tells a crease, where the new edge would cut the corner,
   // from the bend of a coarse mesh on a curved surface (45 degrees around a
   // thin tube).
@@ -58,28 +59,35 @@ struct ShapeOptions {
 };
 
 struct ShapeStats {
-  MeshShape before, after;
+  MeshShape before, after;  // the mesh handed in, the mesh handed back
   size_t flips = 0;       // edges flipped
   size_t moves = 0;       // vertex moves kept by the relaxation
   size_t rounds_undone = 0;  // rounds thrown away because triangles crossed
 };
 
-// Improves `mesh` in place (an oriented manifold, closed or with boundary):
-//  - flips an interior edge when that lowers the valence excess
-//    sum((valence - 6)^2) (4 on the boundary) of its four vertices without
-//    making a sliver, or when it raises the worse of its two triangles'
-//    quality; never when the edge's two triangles or the flipped pair bend
-//    by more than max_bend, nor when the flipped edge exists already (which
-//    would make a non-manifold edge), nor below valence 3;
-//  - moves each interior vertex of a triangle under relax_below quality
+// Improves `mesh` in place (an oriented manifold, closed or with boundary)
+// in up to `rounds` rounds of:
+//  - flips of interior edges that lower the valence excess
+//    sum((valence - 6)^2) (4 on the boundary) of their four vertices
+//    without making a sliver, or raise the worse of their two triangles'
+//    quality when it is poor; never when the edge's two triangles or the
+//    flipped pair bend by more than max_bend (flip_bend with points), nor
+//    when the new edge's midpoint lies farther from the points than the
+//    old one's (see flip_slack), nor when the new edge exists already
+//    (which would make a non-manifold edge), nor below valence 3 or above
+//    valence 10;
+//  - moves of each interior vertex of a triangle under relax_below quality
 //    half way toward its neighbours' mean, within its tangent plane, then
-//    onto the least-squares plane of its 8 nearest points (`points` may be
-//    null: the move stays in the tangent plane).  A move that turns a
-//    triangle over or folds an edge is not made; boundary vertices and
-//    vertices on sharp features never move.
+//    onto the least-squares plane of its 8 nearest points, or onto one of
+//    those points (`snap`, or where that plane leans more than max_bend
+//    from the vertex normal; `points` null: the move stays in the tangent
+//    plane).  A move that turns a triangle over or folds an edge is not
+//    made; boundary vertices and vertices on sharp features (a triangle
+//    more than max_bend from the vertex normal) never move.
 // Topology (genus, components, boundary loops) is unchanged by
 // construction; a round after which more triangle pairs cross than before
-// the pass is undone.  Deterministic (a fixed visiting order).
+// the pass is undone and ends the pass.  Deterministic (a fixed visiting
+// order).
 ShapeStats improve_shape(TriangleMesh& mesh, const PointIndex* points, const ShapeOptions& options = {});
 
 }  // namespace dbss
