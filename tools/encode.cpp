@@ -8,6 +8,7 @@
 #include <string>
 
 #include "dbss/encoder/encode.h"
+#include "dbss/encoder/mesh_shape.h"
 #include "dbss/encoder/point_index.h"
 #include "dbss/encoder/cell_dump.h"
 #include "dbss/encoder/point_distances.h"
@@ -179,6 +180,18 @@ int run_encode(const std::vector<std::string_view>& args) {
                                          (st.pinholes ? ", " + std::to_string(st.pinholes) + " pinholes closed" : "") + ")";
   row("surface", 0, nullptr, surface_notes);
   row("QEM simplification", st.seconds.simplify, &st.simplified, "");
+  {
+    // Before: QEM's mesh; after: the control mesh in the file (shaped,
+    // projected, Draco-quantized).
+    const ShapeStats& sh = st.shape_stats;
+    const MeshShape final_shape = mesh_shape(e.control);
+    char notes[224];
+    std::snprintf(notes, sizeof notes,
+                  "%zu flips, %zu moves; triangles under quality %.1f: QEM's %.1f%%, the control mesh's %.1f%%; max valence %u, %u",
+                  sh.flips, sh.moves, kPoorQuality, 100 * sh.before.poor_share, 100 * final_shape.poor_share,
+                  sh.before.max_valence, final_shape.max_valence);
+    row("shaping", st.seconds.shape, &st.control, options.control.shape.enabled ? notes : "off");
+  }
   row("projection", st.seconds.project, &st.control, std::to_string(st.projection_skipped) + " vertices kept off the points");
   row("Draco", e.seconds.draco, &e.control, std::to_string(e.contents.control_mesh.size()) + " bytes of Draco, " + std::to_string(e.control_bits) + "-bit positions");
   // Under auto the count stops at the first level denser than the points,

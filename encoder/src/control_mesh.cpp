@@ -307,9 +307,18 @@ Result<ControlMeshStages> build_control_mesh(const PointIndex& index, const Cont
   s.seconds.simplify = since(t);
   if (Status st = check_stage(s.simplified, wrapped_info, "simplification"); !st.ok()) return st;
 
+  stage("shaping");
+  t = Clock::now();
+  // Flips and relaxation toward a mesh the butterfly's stencils like (no
+  // slivers, valences near 6); projection below then puts the vertices on
+  // the points.
+  s.control = s.simplified;
+  s.shape_stats = improve_shape(s.control, &index, o.shape);
+  s.seconds.shape = since(t);
+  if (Status st = check_stage(s.control, wrapped_info, "shaping"); !st.ok()) return st;
+
   stage("projecting");
   t = Clock::now();
-  s.control = s.simplified;
   // Smooth out any fold the collapses left, then project: the projection
   // refuses moves that fold, so the control mesh ends fold-free.
   s.untangled = untangle_folds(s.control);
@@ -340,6 +349,22 @@ Result<ControlMeshStages> build_control_mesh(const PointIndex& index, const Cont
   // pass through the opposite side.
   s.projection_skipped += undo_self_intersections(s.control, before);
   s.seconds.project = since(t);
+  if (o.shape.enabled) {
+    // Jumps onto the points move vertices by up to a point spacing
+    // sideways, a lot next to a short edge (a sphere's slivers went from
+    // 0.2% to 1.2% of its triangles): flips, and moves from point to point,
+    // mend them with the vertices left on the points.
+    t = Clock::now();
+    ShapeOptions on_points = o.shape;
+    on_points.snap = true;
+    const ShapeStats again = improve_shape(s.control, &index, on_points);
+    s.shape_stats.flips += again.flips;
+    s.shape_stats.moves += again.moves;
+    s.shape_stats.rounds_undone += again.rounds_undone;
+    s.shape_stats.after = again.after;
+    s.seconds.shape += since(t);
+    if (Status st = check_stage(s.control, wrapped_info, "shaping"); !st.ok()) return st;
+  }
   return s;
 }
 

@@ -8,6 +8,7 @@
 
 #include "dbss/decoder/mesh.h"
 #include "dbss/encoder/cell_carving.h"
+#include "dbss/encoder/mesh_shape.h"
 #include "dbss/encoder/point_index.h"
 #include "dbss/encoder/point_input.h"
 #include "dbss/encoder/shell_mesh.h"
@@ -29,6 +30,7 @@ struct ControlMeshOptions {
   SurfaceMode surface = SurfaceMode::automatic;
   uint32_t control_faces = 0;  // 0 = default_control_faces()
   ShrinkWrapOptions shrink_wrap;
+  ShapeOptions shape;          // the shaping pass after QEM (enabled = false: QEM's mesh as it is)
   // Called with a stage's name as it starts (for progress display); may be empty.
   std::function<void(const char*)> on_stage;
 };
@@ -36,7 +38,7 @@ struct ControlMeshOptions {
 struct StageTimes {
   // seconds; with an automatic grid the search carves the chosen grid, so
   // `grid` includes that carving and `carve` is about zero
-  double grid = 0, carve = 0, triangulate = 0, shrink_wrap = 0, simplify = 0, project = 0;
+  double grid = 0, carve = 0, triangulate = 0, shrink_wrap = 0, simplify = 0, shape = 0, project = 0;
 };
 
 struct ControlMeshStages {
@@ -50,10 +52,11 @@ struct ControlMeshStages {
   TriangleMesh shell;       // triangulated air faces
   TriangleMesh wrapped;     // after shrink-wrapping
   TriangleMesh simplified;  // after QEM
-  TriangleMesh control;     // simplified vertices projected onto the points
+  TriangleMesh control;     // simplified, shaped (mesh_shape.h), vertices projected onto the points
   MeshInfo shell_info;
   ShrinkWrapStats wrap_stats;
   SimplifyStats simplify_stats;
+  ShapeStats shape_stats;  // flips and moves of the shaping pass, the shape before and after it
   size_t projection_skipped = 0;  // control vertices left off the points (a fold), plus moves undone (a crossing)
   size_t untangled = 0;           // folded edges the simplification left, smoothed out before projection
   size_t relaxed = 0;             // vertex moves that cleared crossings the simplification left
