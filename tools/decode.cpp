@@ -8,6 +8,7 @@
 #include "dbss/io/geometry_files.h"
 #include "dbss/format/reader.h"
 #include "args.h"
+#include "open_dbss.h"
 #include "progress.h"
 
 namespace dbss::tools {
@@ -61,22 +62,13 @@ int run_decode(const std::vector<std::string_view>& args) {
   if (input.empty()) return usage("no input file");
   if (output.empty()) return usage("no output file (-o OUT.ply)");
 
-  auto bytes = io::read_file(input);
-  if (!bytes.ok()) {
-    std::fprintf(stderr, "dbss decode: %s\n", bytes.status().message().c_str());
-    return 1;
-  }
-  ProgressiveDecoder d;
-  d.feed(bytes.value());
-  const Status end = d.finish();
   // Levels verified before an error stay usable (spec section 11), so only a
   // file with no usable control mesh, or a request past what was verified,
   // fails here.
+  ProgressiveDecoder d;
+  Status end;
+  if (!open_dbss("decode", input, d, end)) return 1;
   const int ready = d.ready_level();
-  if (ready < 0) {
-    std::fprintf(stderr, "dbss decode: %s: %s\n", input.c_str(), end.to_string().c_str());
-    return 1;
-  }
   const int declared = d.reader().header().level_count;
   if (level > declared) {
     std::fprintf(stderr, "dbss decode: %s: level %ld is not in the file (finest complete level: %d)\n", input.c_str(),

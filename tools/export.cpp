@@ -9,6 +9,7 @@
 #include "dbss/io/file.h"
 #include "dbss/io/gltf.h"
 #include "args.h"
+#include "open_dbss.h"
 #include "progress.h"
 
 namespace dbss::tools {
@@ -94,19 +95,10 @@ int run_export(const std::vector<std::string_view>& args) {
     if (ext != "glb" && ext != "gltf") return usage("the output must be a .glb or .gltf file: " + output);
   }
 
-  auto bytes = io::read_file(input);
-  if (!bytes.ok()) {
-    std::fprintf(stderr, "dbss export: %s\n", bytes.status().message().c_str());
-    return 1;
-  }
   ProgressiveDecoder d;
-  d.feed(bytes.value());
-  const Status end = d.finish();
+  Status end;
+  if (!open_dbss("export", input, d, end)) return 1;
   const int ready = d.ready_level();
-  if (ready < 0) {
-    std::fprintf(stderr, "dbss export: %s: %s\n", input.c_str(), end.to_string().c_str());
-    return 1;
-  }
   const int declared = d.reader().header().level_count;
   if (first < 0) {
     first = 0;
