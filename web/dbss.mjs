@@ -70,10 +70,18 @@ export class StreamingDecoder {
   push(bytes) {
     this.#live();
     if (this.err) throw this.err;
+    if (!ArrayBuffer.isView(bytes)) bytes = new Uint8Array(bytes);  // an ArrayBuffer
     if (bytes.length > this.bufSize) {
       if (this.buf) this.m._dbss_free(this.buf);
-      this.bufSize = Math.max(bytes.length, 65536);
-      this.buf = this.m._dbss_alloc(this.bufSize);
+      this.buf = 0;
+      this.bufSize = 0;
+      const size = Math.max(bytes.length, 65536);
+      const buf = this.m._dbss_alloc(size);
+      // With memory growth on, malloc returns 0 when WebAssembly memory is
+      // exhausted; writing there would overwrite the module's own data.
+      if (!buf) throw new RangeError('dbss: out of WebAssembly memory');
+      this.buf = buf;
+      this.bufSize = size;
     }
     this.m.HEAPU8.set(bytes, this.buf);
     if (this.m._dbss_feed(this.h, this.buf, bytes.length) !== 0) this.#fail();

@@ -15,6 +15,12 @@ Status invalid(const std::string& name, const std::string& what) {
 Status check_reconstructible(const PointCloud& c, const std::string& name) {
   const size_t n = c.size();
   if (n < 4) return invalid(name, "needs at least 4 points, has " + std::to_string(n));
+  // The file readers refuse such coordinates already; points handed over in
+  // memory (the library, Python) are checked here: the point index squares
+  // distances in float, which overflow past about 1e19.
+  for (size_t i = 0; i < c.xyz.size(); ++i)
+    if (!std::isfinite(c.xyz[i]) || std::abs(c.xyz[i]) > 1e15f)
+      return invalid(name, "point " + std::to_string(i / 3) + " has a coordinate that is NaN, infinite or over 1e15");
   auto p = [&](size_t i) { return std::array<double, 3>{c.xyz[3 * i], c.xyz[3 * i + 1], c.xyz[3 * i + 2]}; };
   auto sub = [](std::array<double, 3> a, std::array<double, 3> b) {
     return std::array<double, 3>{a[0] - b[0], a[1] - b[1], a[2] - b[2]};

@@ -3,8 +3,12 @@
 // checks the JSON and the GLB framing; every index into accessors, buffer
 // views and buffers, and every byte range, is checked here again before it
 // is used, since the input is untrusted.
+#include <algorithm>
 #include <array>
 #include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <unordered_map>
 
 #include "formats.h"
@@ -64,7 +68,10 @@ struct Elements {
 
 class Reader {
  public:
-  Reader(const std::string& name, const tinygltf::Model& m) : name_(name), m_(m) {}
+  // `limit`: the most points and triangles the file may expand to (nodes
+  // may place one mesh many times; a small file must not ask for
+  // gigabytes).
+  Reader(const std::string& name, const tinygltf::Model& m, size_t limit) : name_(name), m_(m), limit_(limit) {}
 
   Status add_scene(GeometryFile& out) {
     const int scene = m_.defaultScene >= 0 ? m_.defaultScene : (m_.scenes.empty() ? -1 : 0);
@@ -75,28 +82,39 @@ class Reader {
         if (Status s = add_mesh(static_cast<int>(i), kIdentity, true, out); !s.ok()) return s;
       return Status();
     }
-    for (int n : m_.scenes[scene].nodes)
-      if (Status s = add_node(n, kIdentity, true, 0, out); !s.ok()) return s;
+    // Depth first with an explicit stack (a long chain of nodes must not
+    // overflow the call stack), each node visited once: a node reached a
+    // second time has two parents or is in a cycle, which glTF forbids, and
+    // walking it again could take exponential time.
+    struct Visit {
+      int node;
+      Matrix parent;
+      bool parent_identity;
+    };
+    std::vector<uint8_t> visited(m_.nodes.size(), 0);
+    std::vector<Visit> stack;
+    const std::vector<int>& roots = m_.scenes[scene].nodes;
+    for (auto r = roots.rbegin(); r != roots.rend(); ++r) stack.push_back({*r, kIdentity, true});
+    while (!stack.empty()) {
+      const Visit v = stack.back();
+      stack.pop_back();
+      if (v.node < 0 || v.node >= static_cast<int>(m_.nodes.size()))
+        return bad(name_, "node " + std::to_string(v.node) + " does not exist");
+      if (visited[v.node])
+        return bad(name_, "node " + std::to_string(v.node) + " is reached twice (two parents, or a cycle in the node hierarchy)");
+      visited[v.node] = 1;
+      const tinygltf::Node& n = m_.nodes[v.node];
+      const bool own_identity = n.matrix.empty() && n.translation.empty() && n.rotation.empty() && n.scale.empty();
+      const Matrix world = own_identity ? v.parent : multiply(v.parent, local_transform(n));
+      const bool identity = v.parent_identity && own_identity;
+      if (n.mesh >= 0)
+        if (Status s = add_mesh(n.mesh, world, identity, out); !s.ok()) return s;
+      for (auto c = n.children.rbegin(); c != n.children.rend(); ++c) stack.push_back({*c, world, identity});
+    }
     return Status();
   }
 
  private:
-  Status add_node(int index, const Matrix& parent, bool parent_identity, size_t depth, GeometryFile& out) {
-    if (index < 0 || index >= static_cast<int>(m_.nodes.size())) return bad(name_, "node " + std::to_string(index) + " does not exist");
-    // glTF's node hierarchy is a forest; a deeper chain than there are nodes
-    // is a cycle.
-    if (depth > m_.nodes.size()) return bad(name_, "node " + std::to_string(index) + " is its own ancestor (the node hierarchy has a cycle)");
-    const tinygltf::Node& n = m_.nodes[index];
-    const bool own_identity = n.matrix.empty() && n.translation.empty() && n.rotation.empty() && n.scale.empty();
-    const Matrix world = own_identity ? parent : multiply(parent, local_transform(n));
-    const bool identity = parent_identity && own_identity;
-    if (n.mesh >= 0)
-      if (Status s = add_mesh(n.mesh, world, identity, out); !s.ok()) return s;
-    for (int c : n.children)
-      if (Status s = add_node(c, world, identity, depth + 1, out); !s.ok()) return s;
-    return Status();
-  }
-
   Status add_mesh(int index, const Matrix& world, bool identity, GeometryFile& out) {
     if (index >= static_cast<int>(m_.meshes.size())) return bad(name_, "mesh " + std::to_string(index) + " does not exist");
     const tinygltf::Mesh& mesh = m_.meshes[index];
@@ -133,6 +151,9 @@ class Reader {
     // one vertex, the first use keeping its place, since glTF splits a
     // vertex wherever its normal or texture coordinate changes and between
     // primitives, which are not holes in the surface.
+    if (p.count > limit_ - std::min(limit_, out.points.size()))
+      return bad(name_, where + ": the scene places over " + std::to_string(limit_) +
+                            " vertices, too many for a file of its size (a mesh instanced that often?)");
     std::vector<uint32_t> vertex(p.count);
     for (size_t v = 0; v < p.count; ++v) {
       double xyz[3];
@@ -158,6 +179,9 @@ class Reader {
            e.component_type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
            e.component_type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT))
         return bad(name_, where + " indices are not unsigned byte, short or int scalars");
+      if (e.count / 3 > limit_ - std::min(limit_, out.triangles.size() / 3))
+        return bad(name_, where + ": the scene places over " + std::to_string(limit_) +
+                              " triangles, too many for a file of its size (a mesh instanced that often?)");
       corners.resize(e.count);
       for (size_t k = 0; k < e.count; ++k) {
         const double i = component(e, k, 0);
@@ -169,7 +193,16 @@ class Reader {
     } else {
       corners = vertex;
     }
-    return add_triangles(corners, mode, where, out.triangles);
+    const size_t first = out.triangles.size();
+    if (Status s = add_triangles(corners, mode, where, out.triangles); !s.ok()) return s;
+    // A mirroring transform (negative determinant) turns the triangles
+    // clockwise, and glTF says to wind them back.
+    const double det = world[0] * (world[5] * world[10] - world[9] * world[6]) -
+                       world[4] * (world[1] * world[10] - world[9] * world[2]) +
+                       world[8] * (world[1] * world[6] - world[5] * world[2]);
+    if (!identity && det < 0)
+      for (size_t t = first; t < out.triangles.size(); t += 3) std::swap(out.triangles[t + 1], out.triangles[t + 2]);
+    return Status();
   }
 
   Status add_triangles(const std::vector<uint32_t>& c, int mode, const std::string& where, std::vector<uint32_t>& tris) {
@@ -278,14 +311,54 @@ class Reader {
 
   const std::string& name_;
   const tinygltf::Model& m_;
+  const size_t limit_;
   std::unordered_map<std::array<uint32_t, 3>, uint32_t, KeyHash> seen_;
 };
 
 // The file's directory, for a .gltf's external buffers.
 std::string directory_of(const std::string& name) {
   const auto slash = name.find_last_of('/');
-  return slash == std::string::npos ? "." : name.substr(0, slash);
+  return slash == std::string::npos ? "." : slash == 0 ? "/" : name.substr(0, slash);
 }
+
+// External buffers ("uri" in a .gltf or a .glb) are read only from the
+// glTF's own directory or below it: tinygltf would also try the working
+// directory and follow "..", so a hostile file could pull any readable file
+// into the geometry.  `user` is the directory's canonical path; paths
+// arrive already joined to it and percent-decoded.
+bool inside_base(const std::string& path, void* user) {
+  namespace fs = std::filesystem;
+  const auto& base = *static_cast<const fs::path*>(user);
+  if (base.empty()) return false;
+  std::error_code ec;
+  const fs::path p = fs::weakly_canonical(fs::path(path), ec);
+  if (ec) return false;
+  const auto [b, q] = std::mismatch(base.begin(), base.end(), p.begin(), p.end());
+  return b == base.end() && q != p.end() && fs::is_regular_file(p, ec);
+}
+
+bool buffer_file_exists(const std::string& path, void* user) { return inside_base(path, user); }
+
+// No "~" or "$VAR" expansion: the path is what the file says.
+std::string keep_path(const std::string& path, void*) { return path; }
+
+bool read_buffer_file(std::vector<unsigned char>* out, std::string* err, const std::string& path, void* user) {
+  std::error_code ec;
+  const auto size = std::filesystem::file_size(path, ec);
+  if (!inside_base(path, user) || ec || size > 0xFFFFFFFFull) {
+    if (err) *err += "an external buffer is missing, outside the glTF's directory or over 4 GiB; ";
+    return false;
+  }
+  std::ifstream in(path, std::ios::binary);
+  out->assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  if (!in.good() && !in.eof()) {
+    if (err) *err += "an external buffer could not be read; ";
+    return false;
+  }
+  return true;
+}
+
+bool no_write(std::string*, const std::string&, const std::vector<unsigned char>&, void*) { return false; }
 
 // Images are never decoded: dbss reads geometry only.
 bool skip_image(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int, void*) {
@@ -302,6 +375,13 @@ Result<GeometryFile> parse_gltf(const std::string& name, std::string_view bytes)
   tinygltf::Model model;
   tinygltf::TinyGLTF loader;
   loader.SetImageLoader(skip_image, nullptr);
+  std::filesystem::path base;
+  {
+    std::error_code ec;
+    base = std::filesystem::canonical(directory_of(name), ec);
+    if (ec) base.clear();
+  }
+  loader.SetFsCallbacks({buffer_file_exists, keep_path, read_buffer_file, no_write, &base});
   std::string err, warn;
   bool loaded = false;
   try {
@@ -328,7 +408,7 @@ Result<GeometryFile> parse_gltf(const std::string& name, std::string_view bytes)
     return bad(name, "not a valid glTF file: " + (err.empty() ? std::string("tinygltf refused it") : err));
   }
   GeometryFile g;
-  Reader reader(name, model);
+  Reader reader(name, model, std::max<size_t>(size_t{1} << 20, 64 * bytes.size()));
   if (Status s = reader.add_scene(g); !s.ok()) return s;
   return g;
 }

@@ -102,6 +102,10 @@ def test_wrong_arrays_and_options(torus_points):
         dbss.encode(pts)
     with pytest.raises(dbss.InvalidArgumentError, match="at least 4 points"):
         dbss.encode(torus_points[:3])
+    pts = torus_points.astype(np.float32)
+    pts[7, 2] = 1e20  # finite in float32, past the coordinate bound
+    with pytest.raises(dbss.InvalidArgumentError, match="point 7 has a coordinate that is NaN, infinite or over 1e15"):
+        dbss.encode(pts)
     with pytest.raises(TypeError, match="'levlz'"):
         dbss.encode(torus_points, levlz=2)
     with pytest.raises(ValueError, match="--grid needs a whole number"):

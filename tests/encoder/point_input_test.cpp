@@ -141,4 +141,8 @@ TEST_CASE("too few, collinear or coplanar points cannot be reconstructed") {
   CHECK(check_reconstructible(pc, "p").message().find("same point") != std::string::npos);
   pc.xyz = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1};
   CHECK(check_reconstructible(pc, "p").ok());
+  // Points handed over in memory get the file readers' coordinate bound.
+  pc.xyz[7] = 1e20f;
+  CHECK(check_reconstructible(pc, "p").message().find("point 2 has a coordinate that is NaN, infinite or over 1e15") !=
+        std::string::npos);
 }

@@ -350,6 +350,27 @@ TEST_CASE("glTF input: node transforms, strips, seams merged, several meshes") {
   INFO(missing.status().message());
   CHECK(missing.status().message().find("nobin.gltf: not a valid glTF file") != std::string::npos);
   CHECK(missing.status().message().find("gone.bin") != std::string::npos);
+  // Buffers come only from the .gltf's directory or below: "../" is
+  // refused even where the file exists.
+  fs::create_directories(scratch() / "sub");
+  auto up = read_geometry(write_bytes(scratch() / "sub", "up.gltf", replaced(beside, "strip.bin", "../strip.bin")));
+  REQUIRE(!up.ok());
+  CHECK(up.status().message().find("up.gltf: not a valid glTF file") != std::string::npos);
+
+  // A mirroring node (negative determinant) winds its triangles back.
+  auto mirrored = parse_geometry("mirror.gltf", replaced(gltf, R"("nodes":[{"mesh":0,)", R"("nodes":[{"mesh":0,"scale":[-1,1,1],)"));
+  REQUIRE(mirrored.ok());
+  CHECK(mirrored.value().points.xyz == std::vector<float>{0, 0, 0, -1, 0, 0, 0, 1, 0, -1, 1, 0});
+  CHECK(mirrored.value().triangles == std::vector<uint32_t>{0, 2, 1, 2, 3, 1, 2, 0, 3});
+
+  // A node reached twice (listed twice, or in a cycle) is refused, not
+  // walked again.
+  for (const auto& [from, to] : {std::pair<std::string, std::string>{R"("nodes":[0])", R"("nodes":[0,0])"},
+                                 {R"("scale":[2,2,2]})", R"("scale":[2,2,2],"children":[0]})"}}) {
+    auto twice = parse_geometry("twice.gltf", replaced(gltf, from, to));
+    REQUIRE(!twice.ok());
+    CHECK(twice.status().message().find("twice.gltf: node 0 is reached twice") != std::string::npos);
+  }
 }
 
 TEST_CASE("damaged glTF files are refused with the file named") {

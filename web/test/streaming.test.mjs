@@ -57,6 +57,16 @@ test('pieces of 7 and 4096 bytes give the same levels as one piece', () => {
   }
 });
 
+test('an ArrayBuffer (a fetch body chunk) is read as its bytes', () => {
+  const bytes = golden('torus-4-levels');
+  const d = new StreamingDecoder(module);
+  const copy = bytes.slice();
+  d.push(copy.buffer);
+  d.finish();
+  assert.deepEqual(levelHashes(d), recorded('torus-4-levels'));
+  d.dispose();
+});
+
 test('a cut file keeps the finest complete level and reports truncated', () => {
   const bytes = golden('torus-4-levels');
   const probe = new StreamingDecoder(module);
