@@ -11,6 +11,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 jobs=$(nproc 2>/dev/null || echo 2)
 work=${1:-build-decoder-only}
+case $work in /*) ;; *) work="$PWD/$work" ;; esac  # absolute: the install prefix below needs one
 rm -rf "$work"
 mkdir -p "$work/poison/Eigen"
 for h in Eigen/Core Eigen/Dense Eigen/Sparse Eigen/Eigenvalues nanoflann.hpp; do
@@ -24,9 +25,9 @@ if c++ -I"$work/poison" -isystem /usr/include/eigen3 -fsyntax-only "$work/poison
 fi
 
 cmake -S . -B "$work/build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DDBSS_BUILD_ENCODER=OFF \
-  -DDBSS_BUILD_BENCH=OFF -DDBSS_WERROR=ON -DCMAKE_INSTALL_PREFIX="$PWD/$work/prefix" \
+  -DDBSS_BUILD_BENCH=OFF -DDBSS_WERROR=ON -DCMAKE_INSTALL_PREFIX="$work/prefix" \
   -DCMAKE_DISABLE_FIND_PACKAGE_Eigen3=ON -DCMAKE_DISABLE_FIND_PACKAGE_nanoflann=ON \
-  -DCMAKE_CXX_FLAGS="-I$PWD/$work/poison" >/dev/null
+  -DCMAKE_CXX_FLAGS="-I$work/poison" >/dev/null
 cmake --build "$work/build" -j "$jobs"
 cmake --install "$work/build" >/dev/null
 for lib in dbss_encoder dbss_measure; do
@@ -53,7 +54,7 @@ for f in tests/golden/v1/*.dbss; do
   "$dbss" export "$f" -o "$work/out.glb" >/dev/null
 done
 
-cmake -S tests/install/consumer -B "$work/consumer" -G Ninja -DCMAKE_PREFIX_PATH="$PWD/$work/prefix" >/dev/null
+cmake -S tests/install/consumer -B "$work/consumer" -G Ninja -DCMAKE_PREFIX_PATH="$work/prefix" >/dev/null
 cmake --build "$work/consumer" >/dev/null
 "$work/consumer/consumer" tests/golden/v1/torus-4-levels.dbss | grep -q "decoder-only consumer ok"
 echo "decoder-only: built without Eigen and nanoflann; info, decode, export and a find_package(dbss COMPONENTS decoder) consumer work"
