@@ -53,31 +53,56 @@ function done() {
     levelCount: decoder.levelCount(), bytes: decoder.bytesFed() });
 }
 
+// Each 'open' starts a new generation: a stream still running for an older
+// one stops at its next piece and reports nothing (its decoder is gone), so
+// a page that opens a second file while the first streams sees only the
+// second.  A 'more' while a fetch is in flight is ignored: two fetches would
+// feed one decoder in no fixed order.
+let generation = 0;
+let inFlight = false;
+class Superseded extends Error {}
+
+async function fetching(gen, run) {
+  inFlight = true;
+  try {
+    await run((bytes) => {
+      if (gen !== generation) throw new Superseded();
+      onPiece(bytes);
+    });
+  } finally {
+    if (gen === generation) inFlight = false;
+  }
+}
+
 self.onmessage = async (ev) => {
   const msg = ev.data;
+  const gen = msg.type === 'open' ? ++generation : generation;
   try {
     if (msg.type === 'open') {
       module ??= await loadModule(msg.wasmUrl);
+      if (gen !== generation) return;  // a newer 'open' came while the module loaded
       if (decoder) decoder.dispose();
       decoder = new StreamingDecoder(module);
       url = msg.url;
       posted = 0;
       firstByte = -1;
+      const d = decoder;
       try {
-        if (msg.upToLevel == null) await streamAll(url, decoder, { onPiece });
-        else await fetchUpToLevel(url, decoder, msg.upToLevel, { onPiece });
+        await fetching(gen, (onPiece) => msg.upToLevel == null ? streamAll(url, d, { onPiece })
+          : fetchUpToLevel(url, d, msg.upToLevel, { onPiece }));
       } finally {
         // Levels verified before an error are still drawn (spec section 11).
-        while (decoder.levelsReady() > posted) postLevel(posted++);
+        if (gen === generation) while (decoder.levelsReady() > posted) postLevel(posted++);
       }
-      done();
+      if (gen === generation) done();
     } else if (msg.type === 'more') {
-      await fetchNextLevel(url, decoder, { onPiece });
-      done();
+      if (inFlight || !decoder) return;
+      await fetching(gen, (onPiece) => fetchNextLevel(url, decoder, { onPiece }));
+      if (gen === generation) done();
     } else if (msg.type === 'level') {
-      postLevel(msg.level);
+      if (decoder) postLevel(msg.level);
     }
   } catch (e) {
-    report(e);
+    if (!(e instanceof Superseded) && gen === generation) report(e);
   }
 };
