@@ -4,39 +4,24 @@
 // accessors must state those counts and bounds.
 #include "gltf_draco.h"
 
+#include "dbss/io/draco_mesh.h"
+
 #include <draco/compression/decode.h>
-#include <draco/compression/encode.h>
 #include <draco/mesh/mesh.h>
 
 #include <algorithm>
 #include <limits>
 #include <string>
+#include <utility>
 
 namespace dbss::io_detail {
 
 Result<DracoLevel> draco_level(const TriangleMesh& in, int bits) {
   if (bits < 1 || bits > 30) return Status(ErrorCode::invalid_argument, "glTF: Draco position bits must be 1 to 30");
-  const uint32_t n = static_cast<uint32_t>(in.vertex_count());
-  draco::Mesh mesh;
-  mesh.set_num_points(n);
-  draco::GeometryAttribute ga;
-  ga.Init(draco::GeometryAttribute::POSITION, nullptr, 3, draco::DT_FLOAT32, false, sizeof(float) * 3, 0);
-  const int att = mesh.AddAttribute(ga, /*identity_mapping=*/true, n);
-  for (uint32_t v = 0; v < n; ++v)
-    mesh.attribute(att)->SetAttributeValue(draco::AttributeValueIndex(v), &in.positions[3 * size_t{v}]);
-  for (size_t f = 0; f < in.triangle_count(); ++f) {
-    draco::Mesh::Face face;
-    for (int k = 0; k < 3; ++k) face[k] = draco::PointIndex(in.triangles[3 * f + k]);
-    mesh.AddFace(face);
-  }
-  draco::Encoder encoder;
-  encoder.SetAttributeQuantization(draco::GeometryAttribute::POSITION, bits);
-  draco::EncoderBuffer buffer;
-  if (const draco::Status s = encoder.EncodeMeshToBuffer(mesh, &buffer); !s.ok())
-    return Status(ErrorCode::internal, "glTF: Draco encoder: " + s.error_msg_string());
-
+  auto bytes = io::draco_encode(in, {bits, -1}, "glTF level");
+  if (!bytes.ok()) return bytes.status();
   DracoLevel out;
-  out.bytes.assign(buffer.data(), buffer.data() + buffer.size());
+  out.bytes = std::move(bytes).value();
   draco::DecoderBuffer db;
   db.Init(reinterpret_cast<const char*>(out.bytes.data()), out.bytes.size());
   draco::Decoder decoder;
