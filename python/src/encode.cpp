@@ -12,6 +12,7 @@
 
 #include <pybind11/numpy.h>
 
+#include "dbss/encoder/mesh_shape.h"
 #include "dbss/encoder/encode.h"
 #include "dbss/encoder/point_input.h"
 #include "dbss/io/file.h"
@@ -124,6 +125,18 @@ py::dict stats_dict(const Encoding& e, size_t points_in, const EncodeOptions& o)
   surface["bridged_area_share"] = st.bridged_area;
   stages["surface"] = surface;
   stages["simplification"] = mesh_counts(st.seconds.simplify, &st.simplified);
+  // The shaping pass: QEM's mesh before, the control mesh in the file after
+  // (as `dbss encode`'s "shaping" row reports them).
+  py::dict shape = mesh_counts(st.seconds.shape, &st.control);
+  const MeshShape final_shape = mesh_shape(e.control);
+  shape["enabled"] = o.control.shape.enabled;
+  shape["flips"] = st.shape_stats.flips;
+  shape["moves"] = st.shape_stats.moves;
+  shape["poor_share_before"] = st.shape_stats.before.poor_share;
+  shape["poor_share_after"] = final_shape.poor_share;
+  shape["max_valence_before"] = st.shape_stats.before.max_valence;
+  shape["max_valence_after"] = final_shape.max_valence;
+  stages["shaping"] = shape;
   py::dict project = mesh_counts(st.seconds.project, &st.control);
   project["kept_off"] = st.projection_skipped;
   stages["projection"] = project;

@@ -74,8 +74,11 @@ def test_stats_per_stage_and_level(torus_points, encoded):
     assert stats["stages"]["draco"]["triangles"] == info["control"]["triangles"]
     assert stats["stages"]["triangulation"]["genus"] == 2
     for stage in ("outliers", "choose_grid", "cell_carving", "triangulation", "shrink_wrapping", "simplification",
-                  "projection", "draco", "levels", "self_check", "container"):
+                  "shaping", "projection", "draco", "levels", "self_check", "container"):
         assert stats["stages"][stage]["seconds"] >= 0
+    shaping = stats["stages"]["shaping"]
+    assert shaping["enabled"] and shaping["triangles"] == info["control"]["triangles"]
+    assert 0 <= shaping["poor_share_after"] <= 1 and 3 <= shaping["max_valence_after"] <= 64
 
 
 def test_decoder_fed_one_byte_at_a_time(encoded):
