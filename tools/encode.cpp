@@ -88,6 +88,16 @@ int run_encode(const std::vector<std::string_view>& args) {
   if (input.empty()) return usage("no input file");
   if (output.empty()) return usage("no output file (-o OUT.dbss)");
 
+  {
+    // Before the work, which can take minutes: an output that cannot be
+    // written is said now, not after.
+    const std::filesystem::path parent = std::filesystem::path(output).parent_path();
+    std::error_code ec;
+    if (!parent.empty() && !std::filesystem::is_directory(parent, ec)) {
+      std::fprintf(stderr, "dbss encode: %s: the directory %s does not exist\n", output.c_str(), parent.string().c_str());
+      return 1;
+    }
+  }
   if (!dump.empty()) {
     // Before the work: a bad directory fails the command with no output written.
     std::error_code ec;

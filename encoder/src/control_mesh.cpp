@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <numbers>
 #include <optional>
 #include <string>
 
@@ -167,10 +168,13 @@ bool build_sheet(ControlMeshStages& s, const PointIndex& index, const ControlMes
                      "% of the points lie over two spacings from one side of it (two sides close together)");
   // Pinholes (a loop a few cells round) are gaps in the sampling or notches
   // the cut left, not where the scan ends: closed in every mode.
-  const HoleFill pinholes = fill_holes(sheet, cell, kPinhole * cell);
+  // So are loops no wider than the gaps of the sparsest sampling: a hole
+  // the points themselves leave (a saddle sampled thinly), not their end.
+  const double gap = 4 * std::numbers::pi * point_spacing(index, 1, 0.99);  // perimeter of a circle two gaps wide
+  const HoleFill pinholes = fill_holes(sheet, cell, std::max(kPinhole * cell, gap));
   const double sheet_area = mesh_area(sheet);
   TriangleMesh filled = sheet;
-  const HoleFill fill = fill_holes(filled, cell);
+  const HoleFill fill = fill_holes(filled, cell, 1e300, /*bridge=*/true);
   const double hole_share = fill.area / std::max(1e-300, fill.area + sheet_area);
   // A closed carving was at hand (the search's): a leak at a finer grid is
   // worth bridging only where it is a hole or two (the bunny's base, 0.3%
@@ -181,6 +185,9 @@ bool build_sheet(ControlMeshStages& s, const PointIndex& index, const ControlMes
                      std::to_string(fill.loops) + " gaps in the points (" + fmt("%.1f", 100 * hole_share) +
                      "% of the area)");
   bool close = o.surface == SurfaceMode::closed;
+  const std::string tubes = fill.bridges ? " (" + std::to_string(2 * fill.bridges) + " of them the ends of " +
+                                               std::to_string(fill.bridges) + " tube(s) the scan cut, joined)"
+                                         : "";
   const std::string why_thin = leaking_grid ? "grids of " + std::to_string(leaking_grid) +
                                                  " cells and finer leak through gaps in the points"
                                            : "the carving encloses " + fmt("%.2g", inside_share) +
@@ -190,12 +197,12 @@ bool build_sheet(ControlMeshStages& s, const PointIndex& index, const ControlMes
     // patch whose boundary would need more than this to close stays open.
     close = fill.loops > 0 && hole_share < kMaxBridged;
     s.surface_reason = close ? "closed: " + why_thin + "; its " + std::to_string(fill.loops) + " hole(s), " +
-                                   fmt("%.1f", 100 * hole_share) + "% of the area, are bridged"
+                                   fmt("%.1f", 100 * hole_share) + "% of the area, are bridged" + tubes
                              : "open: " + why_thin + "; closing it would take " + fmt("%.0f", 100 * hole_share) +
                                    "% of the area from no points";
   } else if (close) {
     s.surface_reason = "closed (asked): " + why_thin + "; " + std::to_string(fill.loops) + " hole(s), " +
-                       fmt("%.1f", 100 * hole_share) + "% of the area, bridged";
+                       fmt("%.1f", 100 * hole_share) + "% of the area, bridged" + tubes;
   } else {
     s.surface_reason = "open (asked)";
   }

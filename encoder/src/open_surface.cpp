@@ -6,6 +6,7 @@
 #include <queue>
 #include <unordered_map>
 
+#include "dbss/encoder/hole_bridge.h"
 #include "dbss/encoder/mesh_adjacency.h"
 #include "dbss/encoder/point_distances.h"
 
@@ -383,24 +384,40 @@ double triangle_area(const TriangleMesh& m, size_t t) {
   return 0.5 * std::sqrt(x * x + y * y + z * z);
 }
 
+double loop_perimeter(const TriangleMesh& m, const std::vector<uint32_t>& loop) {
+  const size_t n = loop.size();
+  double perimeter = 0;
+  for (size_t i = 0; i < n; ++i) {
+    double d2 = 0;
+    for (int a = 0; a < 3; ++a) d2 += std::pow(double{m.positions[3 * loop[i] + a]} - m.positions[3 * loop[(i + 1) % n] + a], 2);
+    perimeter += std::sqrt(d2);
+  }
+  return perimeter;
+}
+
 double mesh_area(const TriangleMesh& m) {
   double area = 0;
   for (size_t t = 0; t < m.triangle_count(); ++t) area += triangle_area(m, t);
   return area;
 }
 
-HoleFill fill_holes(TriangleMesh& m, double edge, double max_perimeter) {
+HoleFill fill_holes(TriangleMesh& m, double edge, double max_perimeter, bool bridge) {
   HoleFill out;
   const size_t triangles_before = m.triangle_count();
-  for (const std::vector<uint32_t>& loop : boundary_loops(m)) {
+  std::vector<std::vector<uint32_t>> loops;
+  for (std::vector<uint32_t>& loop : boundary_loops(m))
+    if (loop_perimeter(m, loop) < max_perimeter) loops.push_back(std::move(loop));
+  // Two ends of a tube the scan cut through are joined, not capped (a cap
+  // on each would cut the handle off); their vertices are placed on the
+  // tube already and skip the membrane and fairing below.
+  std::vector<uint32_t> tube_vertices;
+  if (bridge) {
+    const size_t before = loops.size();
+    out.bridges = bridge_facing_loops(m, loops, edge, tube_vertices);
+    out.loops += before - loops.size();
+  }
+  for (const std::vector<uint32_t>& loop : loops) {
     const size_t n = loop.size();
-    double perimeter = 0;
-    for (size_t i = 0; i < n; ++i) {
-      double d2 = 0;
-      for (int a = 0; a < 3; ++a) d2 += std::pow(double{m.positions[3 * loop[i] + a]} - m.positions[3 * loop[(i + 1) % n] + a], 2);
-      perimeter += std::sqrt(d2);
-    }
-    if (perimeter >= max_perimeter) continue;
     double c[3] = {0, 0, 0}, radius = 0;
     for (uint32_t v : loop)
       for (int a = 0; a < 3; ++a) c[a] += m.positions[3 * v + a] / static_cast<double>(n);
@@ -450,11 +467,18 @@ HoleFill fill_holes(TriangleMesh& m, double edge, double max_perimeter) {
     ++out.loops;
   }
   out.triangles = m.triangle_count() - triangles_before;
-  if (out.added_vertices.empty()) return out;
-  // Membrane: the new vertices relax to their neighbours' mean.
+  // The tubes are placed on curves that continue the surface already
+  // (hole_bridge.cpp); fairing would pull their bend straight.
+  const std::vector<uint32_t> disk_vertices = out.added_vertices;
+  out.added_vertices.insert(out.added_vertices.end(), tube_vertices.begin(), tube_vertices.end());
+  if (disk_vertices.empty()) {
+    for (size_t t = triangles_before; t < m.triangle_count(); ++t) out.area += triangle_area(m, t);
+    return out;
+  }
+  // Membrane: the new vertices of the disks relax to their neighbours' mean.
   const Adjacency adj = vertex_adjacency(m);
   for (int it = 0; it < 60; ++it)
-    for (uint32_t v : out.added_vertices) {
+    for (uint32_t v : disk_vertices) {
       double mean[3] = {0, 0, 0};
       const uint32_t deg = adj.offset[v + 1] - adj.offset[v];
       for (uint32_t i = adj.offset[v]; i < adj.offset[v + 1]; ++i)
@@ -466,9 +490,9 @@ HoleFill fill_holes(TriangleMesh& m, double edge, double max_perimeter) {
   // applied twice (Kobbelt's discrete fairing) bend the patch so its slope
   // follows the surface around the hole.  The loop and the rest stay put.
   std::vector<uint8_t> in_fill(m.vertex_count(), 0), near_fill(m.vertex_count(), 0);
-  for (uint32_t v : out.added_vertices) in_fill[v] = near_fill[v] = 1;
+  for (uint32_t v : disk_vertices) in_fill[v] = near_fill[v] = 1;
   std::vector<uint32_t> ring;
-  for (uint32_t v : out.added_vertices)
+  for (uint32_t v : disk_vertices)
     for (uint32_t i = adj.offset[v]; i < adj.offset[v + 1]; ++i)
       if (!near_fill[adj.index[i]]) near_fill[adj.index[i]] = 1, ring.push_back(adj.index[i]);
   std::vector<double> u(3 * m.vertex_count(), 0);
@@ -482,8 +506,8 @@ HoleFill fill_holes(TriangleMesh& m, double edge, double max_perimeter) {
   };
   for (int it = 0; it < 200; ++it) {
     for (uint32_t v : ring) umbrella(v);
-    for (uint32_t v : out.added_vertices) umbrella(v);
-    for (uint32_t v : out.added_vertices) {
+    for (uint32_t v : disk_vertices) umbrella(v);
+    for (uint32_t v : disk_vertices) {
       const uint32_t deg = adj.offset[v + 1] - adj.offset[v];
       double nu = 0, u2[3] = {0, 0, 0};
       for (uint32_t i = adj.offset[v]; i < adj.offset[v + 1]; ++i) {

@@ -51,6 +51,10 @@ Status check_reconstructible(const PointCloud& c, const std::string& name) {
   best = 0;
   for (size_t i = 0; i < n; ++i) best = std::max(best, std::abs(dot(normal, sub(p(i), p0))) / nn);
   if (best / extent < 1e-6) return invalid(name, "all points lie on one plane; a closed surface needs volume");
+  // After the shape checks, which say more about a handful of points.
+  if (n < kMinReconstructPoints)
+    return invalid(name, "has " + std::to_string(n) + " points; reconstructing a surface needs at least " +
+                             std::to_string(kMinReconstructPoints));
   return {};
 }
 

@@ -139,7 +139,23 @@ TEST_CASE("too few, collinear or coplanar points cannot be reconstructed") {
   CHECK(check_reconstructible(pc, "p").message().find("plane") != std::string::npos);
   pc.xyz = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
   CHECK(check_reconstructible(pc, "p").message().find("same point") != std::string::npos);
+  // A tetrahedron's corners have volume but are too few for any surface;
+  // so are 49 points spread round a sphere; 50 are enough.
   pc.xyz = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1};
+  CHECK(check_reconstructible(pc, "p").message().find("p: has 4 points; reconstructing a surface needs at least 50") !=
+        std::string::npos);
+  const auto sphere = [](size_t n) {
+    PointCloud c;
+    for (size_t i = 0; i < n; ++i) {
+      // A Fibonacci spiral: evenly spread, no two points alike.
+      const double z = 1 - (2 * static_cast<double>(i) + 1) / static_cast<double>(n);
+      const double a = 2.399963 * static_cast<double>(i), r = std::sqrt(1 - z * z);
+      c.xyz.insert(c.xyz.end(), {static_cast<float>(r * std::cos(a)), static_cast<float>(r * std::sin(a)), static_cast<float>(z)});
+    }
+    return c;
+  };
+  CHECK(check_reconstructible(sphere(kMinReconstructPoints - 1), "p").message().find("at least 50") != std::string::npos);
+  pc = sphere(kMinReconstructPoints);
   CHECK(check_reconstructible(pc, "p").ok());
   // Points handed over in memory get the file readers' coordinate bound.
   pc.xyz[7] = 1e20f;

@@ -190,13 +190,16 @@ TEST_CASE("defect shapes: with 0.5% outliers the result has the clean topology")
   }
 }
 
-TEST_CASE("defect shapes: a 10% hole under closed mode keeps the genus and the error on the scanned part within 1.3x") {
+TEST_CASE("defect shapes: a 10% or 15% hole under closed mode keeps the genus and the error on the scanned part within 1.3x") {
+  // The 15% hole cuts right through one of the double torus's tubes: the
+  // two cut ends are joined by a tube, not capped (which lost a handle).
+  for (const char* hole : {"hole 10%", "hole 15%"})
   for (const char* name : kShapes) {
-    INFO(name);
+    INFO(name << " / " << hole);
     const Encoded* cp = encoded(name, "clean");
     if (!cp) continue;
     const Encoded& c = *cp;
-    const Encoded* rp = encoded(name, "hole 10%", SurfaceMode::closed);
+    const Encoded* rp = encoded(name, hole, SurfaceMode::closed);
     if (!rp) continue;
     const Encoded& r = *rp;
     CHECK_FALSE(r.e.stages.open);
@@ -211,17 +214,26 @@ TEST_CASE("defect shapes: a 10% hole under closed mode keeps the genus and the e
   }
 }
 
-TEST_CASE("defect shapes: a 10% hole under open mode gives one boundary loop along the hole") {
+TEST_CASE("defect shapes: a 10% or 15% hole under open mode gives a boundary along the hole") {
+  for (const char* hole : {"hole 10%", "hole 15%"})
   for (const char* name : kShapes) {
-    INFO(name);
-    const Encoded* rp = encoded(name, "hole 10%", SurfaceMode::open);
+    INFO(name << " / " << hole);
+    const Encoded* rp = encoded(name, hole, SurfaceMode::open);
     if (!rp) continue;
     const Encoded& r = *rp;
     CHECK(r.e.stages.open);
     CHECK(r.info.components == 1);
-    CHECK(r.info.boundary_loops == 1);
-    CHECK(r.info.genus == shape(name).genus);
-    CHECK(dt::topology(r.finest).boundary_loops == 1);
+    if (std::string(name) == "double torus" && std::string(hole) == "hole 15%") {
+      // This hole runs right round one tube: its boundary is two loops, one
+      // at each cut end, and that handle is gone.  Either way, each handle
+      // lost is one loop more.
+      CHECK((r.info.boundary_loops == 1 || r.info.boundary_loops == 2));
+      CHECK(r.info.genus + r.info.boundary_loops - 1 == shape(name).genus);
+    } else {
+      CHECK(r.info.boundary_loops == 1);
+      CHECK(r.info.genus == shape(name).genus);
+      CHECK(dt::topology(r.finest).boundary_loops == 1);
+    }
     // The loop runs along the hole: every boundary vertex lies within 8% of
     // the diagonal of a point the hole took out (the hole's rim, give or
     // take the cell or two the open surface's edge may recede by; measured

@@ -59,7 +59,8 @@ size_t trim_unsupported(TriangleMesh& sheet, const PointIndex& index, double rea
 std::vector<std::vector<uint32_t>> boundary_loops(const TriangleMesh& m);
 
 struct HoleFill {
-  size_t loops = 0;            // holes closed
+  size_t loops = 0;            // holes closed (a bridged pair counts two)
+  size_t bridges = 0;          // pairs of loops joined by a tube
   size_t triangles = 0;        // triangles added
   double area = 0;             // their area, model units^2
   std::vector<uint32_t> added_vertices;  // the new vertices (no points support them)
@@ -70,8 +71,13 @@ struct HoleFill {
 // towards its centroid, the innermost closed by a zig-zag strip; the new
 // vertices relax to a membrane (the loop held still), then are faired so
 // the patch's slope follows the surface around the hole.  The result keeps
-// the orientation.
-HoleFill fill_holes(TriangleMesh& m, double edge, double max_perimeter = 1e300);
+// the orientation.  With `bridge`, loops that face each other across a gap
+// (the two ends of a tube the scan cut through) are first joined by a tube
+// (hole_bridge.h), which is faired with the patches.
+HoleFill fill_holes(TriangleMesh& m, double edge, double max_perimeter = 1e300, bool bridge = false);
+
+// Length of a closed loop of vertices, model units.
+double loop_perimeter(const TriangleMesh& m, const std::vector<uint32_t>& loop);
 
 // Area of triangle t, and of the whole mesh; model units^2.
 double triangle_area(const TriangleMesh& m, size_t t);
