@@ -60,10 +60,10 @@ const mounts = { ...repoMounts(repo, buildDir), '/bench-files/': work, '/bench-i
   '/simd/': compareDir ?? join(repo, 'build-web-simd/dist') };
 const { server, url } = await startServer({ mounts });
 const browser = await chromium.launch({ executablePath: process.env.DBSS_CHROMIUM ?? '/usr/bin/chromium', args: ['--no-sandbox'] });
-async function measure(wasm) {
+async function measure(otherWasm) {
   const page = await browser.newPage();
   const q = new URLSearchParams({ dbss: `/bench-input/${basename(file)}`, drc: `/bench-files/${stem}-level{L}.drc`, levels: levels.join(',') });
-  if (wasm) q.set('wasm', wasm);
+  if (otherWasm) q.set('other', otherWasm);
   await page.goto(`${url}/web/bench/?${q}`);
   await page.waitForFunction(() => window.benchResult, null, { timeout: 300000 });
   const res = await page.evaluate(() => window.benchResult);
@@ -71,13 +71,14 @@ async function measure(wasm) {
   if (res.error) throw new Error(res.error);
   for (const r of res.rows) {
     if (r.hash !== native[r.level]) throw new Error(`level ${r.level}: browser hash ${r.hash}, native ${native[r.level]}`);
+    if (otherWasm && r.otherHash !== native[r.level]) throw new Error(`level ${r.level}: the other build's hash ${r.otherHash}, native ${native[r.level]}`);
     if (r.dracoVertices !== r.vertices || r.dracoTriangles !== r.triangles) throw new Error(`level ${r.level}: Draco's mesh has other counts`);
   }
   return res;
 }
 
-const res = await measure(null);
-const resSimd = other ? await measure('/simd/dbss_wasm.mjs') : null;
+// The builds and draco3d take turns in one page (bench.mjs).
+const res = await measure(other ? '/simd/dbss_wasm.mjs' : null);
 await browser.close();
 server.close();
 
@@ -87,7 +88,7 @@ if (compareDir) console.log(`other: the module in ${compareDir}`);
 console.log(`level  triangles |  dbss bytes  dbss ms | draco bytes  draco3d ms | draco3d / dbss${other ? ` | dbss ${other} ms  ratio` : ''}`);
 res.rows.forEach((r, i) => {
   let line = `${pad(r.level, 5)} ${pad(r.triangles, 10)} | ${pad(r.dbssBytes, 11)} ${pad(r.dbssMs.toFixed(2), 8)} | ${pad(r.dracoBytes, 11)} ${pad(r.dracoMs.toFixed(2), 11)} | ${pad((r.dracoMs / r.dbssMs).toFixed(2) + 'x', 14)}`;
-  if (resSimd) { const s = resSimd.rows[i]; line += ` | ${pad(s.dbssMs.toFixed(2), 12)} ${pad((r.dracoMs / s.dbssMs).toFixed(2) + 'x', 6)}`; }
+  if (other) line += ` | ${pad(r.otherMs.toFixed(2), 12)} ${pad((r.dracoMs / r.otherMs).toFixed(2) + 'x', 6)}`;
   console.log(line);
 });
 console.log('every level hashes as build/bin/dbss decodes it' + (other ? ` (the ${other} build too)` : ''));
