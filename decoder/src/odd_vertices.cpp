@@ -33,11 +33,42 @@ typedef double D4 __attribute__((vector_size(32)));
 typedef float F4 __attribute__((vector_size(16)));
 }  // namespace
 
+// A point as three binary64 values, for the scalar kernels: the same lane
+// operations as D4's, without the ignored fourth lane.  (Outside the
+// anonymous namespace: the kernels' structs hold it.)
+struct P3 {
+  double v[3];
+  double operator[](int i) const { return v[i]; }
+};
+inline P3 operator+(P3 a, P3 b) { return P3{{a.v[0] + b.v[0], a.v[1] + b.v[1], a.v[2] + b.v[2]}}; }
+inline P3 operator-(P3 a, P3 b) { return P3{{a.v[0] - b.v[0], a.v[1] - b.v[1], a.v[2] - b.v[2]}}; }
+inline P3 operator*(P3 a, P3 b) { return P3{{a.v[0] * b.v[0], a.v[1] * b.v[1], a.v[2] * b.v[2]}}; }
+inline P3 operator*(double w, P3 a) { return P3{{w * a.v[0], w * a.v[1], w * a.v[2]}}; }
+inline P3 operator*(P3 a, double w) { return P3{{a.v[0] * w, a.v[1] * w, a.v[2] * w}}; }
+
+// WebAssembly runs the scalar kernels whatever the choice (its vectors,
+// where enabled, were measured no faster), so it does not ship this copy.
+#if !defined(__wasm__)
+#define DBSS_HAVE_VECTOR_KERNELS 1
+#define DBSS_KERNEL_SCALAR 0
 namespace kernels_generic {
 #define DBSS_KERNEL_AVX2 0
 #include "odd_vertex_kernels.inc"
 #undef DBSS_KERNEL_AVX2
 }  // namespace kernels_generic
+#undef DBSS_KERNEL_SCALAR
+#endif
+
+// Three scalar lanes: WebAssembly's kernels, and Kernels::scalar elsewhere
+// (the tests check its bits against the same goldens).
+#define DBSS_KERNEL_SCALAR 1
+#define DBSS_KERNEL_AVX2 0
+namespace kernels_scalar {
+#include "odd_vertex_kernels.inc"
+}  // namespace kernels_scalar
+#undef DBSS_KERNEL_AVX2
+#undef DBSS_KERNEL_SCALAR
+#define DBSS_KERNEL_SCALAR 0
 
 // The same kernels for AVX2, chosen at run time; tests run both
 // (Kernels::baseline forces the baseline) against the same golden bits.
@@ -60,16 +91,23 @@ namespace kernels_avx2 {
 #pragma GCC pop_options
 #endif
 #endif
+#undef DBSS_KERNEL_SCALAR
 
 OddVertexKernels select_kernels(Kernels choice) {
+  const OddVertexKernels scalar{kernels_scalar::stencil_points, kernels_scalar::displaced_points,
+                                kernels_scalar::displaced_points_chosen};
+#ifndef DBSS_HAVE_VECTOR_KERNELS
+  (void)choice;
+  return scalar;
+#else
+  if (choice == Kernels::scalar) return scalar;
 #ifdef DBSS_HAVE_AVX2_KERNELS
   static const bool cpu = __builtin_cpu_supports("avx2");
   if (choice == Kernels::best && cpu)
     return {kernels_avx2::stencil_points, kernels_avx2::displaced_points, kernels_avx2::displaced_points_chosen};
-#else
-  (void)choice;
 #endif
   return {kernels_generic::stencil_points, kernels_generic::displaced_points, kernels_generic::displaced_points_chosen};
+#endif
 }
 
 }  // namespace dbss::detail

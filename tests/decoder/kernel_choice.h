@@ -1,6 +1,7 @@
 // The decoder kernels a test asks for: Kernels::baseline when the
 // environment has DBSS_BASELINE_KERNELS (one CTest entry sets it to rerun
-// the bit-exactness tests on the portable build), else the best the
+// the bit-exactness tests on the portable build), Kernels::scalar with
+// DBSS_SCALAR_KERNELS (WebAssembly's build), else the best the
 // processor runs.  Read here, at the test level, as a tool would: the
 // decoder itself only takes the option.
 #pragma once
@@ -12,7 +13,9 @@
 namespace dbss::test {
 
 inline Kernels kernels_under_test() {
-  static const Kernels k = std::getenv("DBSS_BASELINE_KERNELS") ? Kernels::baseline : Kernels::best;
+  static const Kernels k = std::getenv("DBSS_BASELINE_KERNELS") ? Kernels::baseline
+                           : std::getenv("DBSS_SCALAR_KERNELS")  ? Kernels::scalar
+                                                                 : Kernels::best;
   return k;
 }
 

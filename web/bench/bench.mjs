@@ -3,10 +3,14 @@
 // L's chunk: container, Draco control mesh, every level) against draco3d's
 // WebAssembly decoder (npm) decoding the same level's mesh, made with
 // draco_encoder at its defaults.  Both end with positions and triangle
-// indices in their module's memory.  Best of several repetitions each.
+// indices in their module's memory.  Best of several repetitions each, in
+// `rounds` rounds that take turns (dbss, the other dbss build, draco3d), so
+// that a busy machine slows all of them alike.
 //
 // ?dbss=URL&levels=3,4,5&drc=URL_PATTERN (with {L} for the level)
 //  &wasm=URL of the dbss module (default build-web/dist/dbss_wasm.mjs)
+//  &other=URL of another build of it, timed the same way (optional)
+//  &rounds=N (default 3)
 import { loadModule, StreamingDecoder } from '../dbss.mjs';
 import { levelEnd } from '../loader.mjs';
 import { fnv1a64 } from '../hash.mjs';
@@ -39,8 +43,25 @@ function best(fn, budget = 800) {
   return bestMs;
 }
 
+// One dbss decode of level L from `prefix`: {ms, vertices, triangles, hash}.
+function timeDbss(module, prefix, L) {
+  let hash = '', vertices = 0, triangles = 0;
+  const ms = best(() => {
+    const d = new StreamingDecoder(module, { keepLevels: false });
+    d.push(prefix);
+    const v = d.level(L);
+    vertices = v.positions.length / 3;
+    triangles = v.indices.length / 3;
+    if (!hash) hash = fnv1a64(v.positions);
+    d.dispose();
+  });
+  return { ms, vertices, triangles, hash };
+}
+
 async function run() {
   const module = await loadModule(params.get('wasm') ?? undefined);
+  const otherModule = params.get('other') ? await loadModule(params.get('other')) : null;
+  const rounds = Number(params.get('rounds') ?? 3);
   const file = new Uint8Array(await (await fetch(params.get('dbss'))).arrayBuffer());
   const probe = new StreamingDecoder(module);
   probe.push(file);
@@ -48,19 +69,9 @@ async function run() {
   const rows = [];
   for (const L of levels) {
     const prefix = file.subarray(0, levelEnd(probe, L));
-    let hash = '', vertices = 0, triangles = 0;
-    const dbssMs = best(() => {
-      const d = new StreamingDecoder(module, { keepLevels: false });
-      d.push(prefix);
-      const v = d.level(L);
-      vertices = v.positions.length / 3;
-      triangles = v.indices.length / 3;
-      if (!hash) hash = fnv1a64(v.positions);
-      d.dispose();
-    });
     const drc = new Int8Array(await (await fetch(params.get('drc').replace('{L}', L))).arrayBuffer());
     let dracoVertices = 0, dracoTriangles = 0;
-    const dracoMs = best(() => {
+    const timeDraco = () => best(() => {
       const dec = new draco.Decoder(), mesh = new draco.Mesh();
       const st = dec.DecodeArrayToMesh(drc, drc.length, mesh);
       if (!st.ok()) throw new Error(`draco3d: ${st.error_msg()}`);
@@ -76,8 +87,20 @@ async function run() {
       draco.destroy(mesh);
       draco.destroy(dec);
     });
+    let mine = null, other = null, dracoMs = Infinity;
+    for (let r = 0; r < rounds; ++r) {
+      const a = timeDbss(module, prefix, L);
+      if (!mine || a.ms < mine.ms) mine = a;
+      if (otherModule) {
+        const b = timeDbss(otherModule, prefix, L);
+        if (!other || b.ms < other.ms) other = b;
+      }
+      dracoMs = Math.min(dracoMs, timeDraco());
+    }
+    const { vertices, triangles, hash } = mine;
+    const dbssMs = mine.ms;
     rows.push({ level: L, vertices, triangles, dbssBytes: prefix.length, dbssMs, dracoBytes: drc.length, dracoMs,
-      dracoVertices, dracoTriangles, hash });
+      dracoVertices, dracoTriangles, hash, otherMs: other?.ms, otherHash: other?.hash });
   }
   probe.dispose();
   window.benchResult = { rows, userAgent: navigator.userAgent };

@@ -2,14 +2,16 @@
 // Browser decoding benchmark: dbss WASM vs draco3d WASM in headless
 // Chromium, levels 3-5 of the shipped example encoded with 5 levels.
 //
-//   node web/bench/run.mjs [--simd] [--file FILE.dbss]
+//   node web/bench/run.mjs [--simd | --compare DIR] [--file FILE.dbss]
 //
 // FILE (default: the shipped example encoded with 5 levels) needs levels
 // 3-5.  Makes its files in build-web/bench/ with build/bin/dbss (encode, decode
 // --level L to PLY) and Debian's draco_encoder (its defaults), serves them,
 // and prints a table and the gzipped sizes of what a page ships.  --simd
 // also times the -msimd128 build (scripts/web-build.sh with DBSS_WASM_SIMD=1
-// into build-web-simd/) after checking that it gives the same hashes.
+// into build-web-simd/) after checking that it gives the same hashes;
+// --compare DIR times another web build of the module (DIR holds its
+// dbss_wasm.mjs and .wasm, e.g. one built from an older commit) the same way.
 import { spawnSync } from 'node:child_process';
 import { existsSync, mkdirSync, readFileSync, statSync } from 'node:fs';
 import { basename, dirname, join, resolve } from 'node:path';
@@ -45,6 +47,9 @@ for (const L of levels) {
 }
 
 const simd = process.argv.includes('--simd');
+const compareArg = process.argv.indexOf('--compare');
+const compareDir = compareArg > 0 ? resolve(process.argv[compareArg + 1]) : null;
+const other = simd ? 'SIMD' : compareDir ? 'other' : null;
 if (simd) {
   const r = spawnSync('bash', [join(repo, 'scripts/web-build.sh'), join(repo, 'build-web-simd')], {
     stdio: ['ignore', 'ignore', 'inherit'], env: { ...process.env, DBSS_WASM_SIMD: '1' } });
@@ -52,13 +57,13 @@ if (simd) {
 }
 
 const mounts = { ...repoMounts(repo, buildDir), '/bench-files/': work, '/bench-input/': dirname(file),
-  '/simd/': join(repo, 'build-web-simd/dist') };
+  '/simd/': compareDir ?? join(repo, 'build-web-simd/dist') };
 const { server, url } = await startServer({ mounts });
 const browser = await chromium.launch({ executablePath: process.env.DBSS_CHROMIUM ?? '/usr/bin/chromium', args: ['--no-sandbox'] });
-async function measure(wasm) {
+async function measure(otherWasm) {
   const page = await browser.newPage();
   const q = new URLSearchParams({ dbss: `/bench-input/${basename(file)}`, drc: `/bench-files/${stem}-level{L}.drc`, levels: levels.join(',') });
-  if (wasm) q.set('wasm', wasm);
+  if (otherWasm) q.set('other', otherWasm);
   await page.goto(`${url}/web/bench/?${q}`);
   await page.waitForFunction(() => window.benchResult, null, { timeout: 300000 });
   const res = await page.evaluate(() => window.benchResult);
@@ -66,25 +71,27 @@ async function measure(wasm) {
   if (res.error) throw new Error(res.error);
   for (const r of res.rows) {
     if (r.hash !== native[r.level]) throw new Error(`level ${r.level}: browser hash ${r.hash}, native ${native[r.level]}`);
+    if (otherWasm && r.otherHash !== native[r.level]) throw new Error(`level ${r.level}: the other build's hash ${r.otherHash}, native ${native[r.level]}`);
     if (r.dracoVertices !== r.vertices || r.dracoTriangles !== r.triangles) throw new Error(`level ${r.level}: Draco's mesh has other counts`);
   }
   return res;
 }
 
-const res = await measure(null);
-const resSimd = simd ? await measure('/simd/dbss_wasm.mjs') : null;
+// The builds and draco3d take turns in one page (bench.mjs).
+const res = await measure(other ? '/simd/dbss_wasm.mjs' : null);
 await browser.close();
 server.close();
 
 const pad = (s, n) => String(s).padStart(n);
 console.log(`${res.userAgent.match(/Chrome\/[\d.]+/)?.[0] ?? 'Chromium'}, headless, one thread; ${file.replace(repo, '')}; best of repetitions`);
-console.log(`level  triangles |  dbss bytes  dbss ms | draco bytes  draco3d ms | draco3d / dbss${simd ? ' | dbss SIMD ms  ratio' : ''}`);
+if (compareDir) console.log(`other: the module in ${compareDir}`);
+console.log(`level  triangles |  dbss bytes  dbss ms | draco bytes  draco3d ms | draco3d / dbss${other ? ` | dbss ${other} ms  ratio` : ''}`);
 res.rows.forEach((r, i) => {
   let line = `${pad(r.level, 5)} ${pad(r.triangles, 10)} | ${pad(r.dbssBytes, 11)} ${pad(r.dbssMs.toFixed(2), 8)} | ${pad(r.dracoBytes, 11)} ${pad(r.dracoMs.toFixed(2), 11)} | ${pad((r.dracoMs / r.dbssMs).toFixed(2) + 'x', 14)}`;
-  if (resSimd) { const s = resSimd.rows[i]; line += ` | ${pad(s.dbssMs.toFixed(2), 12)} ${pad((r.dracoMs / s.dbssMs).toFixed(2) + 'x', 6)}`; }
+  if (other) line += ` | ${pad(r.otherMs.toFixed(2), 12)} ${pad((r.dracoMs / r.otherMs).toFixed(2) + 'x', 6)}`;
   console.log(line);
 });
-console.log('every level hashes as build/bin/dbss decodes it' + (simd ? ' (the SIMD build too)' : ''));
+console.log('every level hashes as build/bin/dbss decodes it' + (other ? ` (the ${other} build too)` : ''));
 
 // What a page ships, gzipped (-9).
 const gz = (p) => gzipSync(readFileSync(p), { level: 9 }).length;

@@ -3,7 +3,9 @@
 // slow server and hash as natively; a cut file keeps its verified levels
 // and shows `truncated`; damaged bytes show their error and no mesh from
 // them; Range requests fetch exactly up to a level; a screenshot shows the
-// mesh (kept as build-web/artefacts/viewer.png).
+// mesh (kept as build-web/artefacts/viewer.png).  Also: three.js's own
+// GLTFLoader reads what `dbss export` and `dbss decode -o x.glb` write, with
+// each level's counts (and, where not Draco-compressed, positions) as dbss's.
 import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
 import { spawnSync } from 'node:child_process';
@@ -22,8 +24,21 @@ const artefacts = join(buildDir, 'artefacts');
 const RATE = 16000;  // bytes per second for the slow server, in 512-byte pieces
 
 function nativeHashes(file) {
+  return nativeLevels(file).map((l) => l.hash);
+}
+
+// `dbss info --hashes` as {level, vertices, triangles, hash} per level.
+function nativeLevels(file) {
   const r = spawnSync(dbss, ['info', file, '--hashes'], { encoding: 'utf8' });
-  return r.stdout.trim().split('\n').filter(Boolean).map((l) => l.split(' ').pop());
+  return r.stdout.trim().split('\n').filter(Boolean).map((l) => {
+    const w = l.split(' ');
+    return { level: Number(w[1]), vertices: Number(w[3]), triangles: Number(w[5]), hash: w[7] };
+  });
+}
+
+function runDbss(args) {
+  const r = spawnSync(dbss, args, { encoding: 'utf8' });
+  assert.equal(r.status, 0, `dbss ${args.join(' ')}: ${r.stderr}`);
 }
 
 let browser, slow, fast, files = {}, tocOf = {};
@@ -52,7 +67,13 @@ before(async () => {
   const dc = bytes.slice();
   dc[ctrl.offset + 12 + 20] ^= 0x01;
   writeFileSync(damagedCtrl, dc);
-  files = { '/example.dbss': example, '/cut.dbss': cut, '/damaged-level2.dbss': damaged, '/damaged-control.dbss': damagedCtrl,
+  // glTF of every level (MSFT_lod), the same with Draco below the finest
+  // level, and one level alone.
+  const glb = join(work, 'example.glb'), glbDraco = join(work, 'example-draco.glb'), glbLevel = join(work, 'level2.glb');
+  runDbss(['export', example, '-o', glb]);
+  runDbss(['export', example, '-o', glbDraco, '--draco', '14']);
+  runDbss(['decode', example, '--level', '2', '-o', glbLevel]);
+  files = { '/example.glb': glb, '/example-draco.glb': glbDraco, '/level2.glb': glbLevel, '/example.dbss': example, '/cut.dbss': cut, '/damaged-level2.dbss': damaged, '/damaged-control.dbss': damagedCtrl,
     '/garbage-control.dbss': join(repo, 'tests/format/data/garbage-control.dbss') };
   tocOf = { ctrl, levl, size: bytes.length };
   const mounts = repoMounts(repo, buildDir);
@@ -165,4 +186,57 @@ test('screenshot: the mesh covers a good part of the canvas', async () => {
   console.log(`# mesh covers ${(100 * fraction).toFixed(1)}% of the canvas; screenshot ${join(artefacts, 'viewer.png')}`);
   assert.ok(fraction > 0.1, `only ${(100 * fraction).toFixed(1)}% of the canvas differs from the background`);
   await page.close();
+});
+
+// The page web/test/pages/gltf.html: what GLTFLoader made of a .glb.
+async function loadGltf(name) {
+  const page = await browser.newPage();
+  const problems = [];
+  page.on('pageerror', (e) => problems.push(e.message));
+  await page.goto(`${fast.url}/web/test/pages/gltf.html?url=${encodeURIComponent(name)}`);
+  await page.waitForFunction(() => window.gltfResult, null, { timeout: 60000 });
+  const res = await page.evaluate(() => window.gltfResult);
+  await page.close();
+  assert.deepEqual(problems, []);
+  assert.equal(res.error, undefined, res.error);
+  return res;
+}
+
+test('GLTFLoader reads `dbss export`: one node per level, counts and positions as dbss decodes them', async () => {
+  const levels = nativeLevels(files['/example.dbss']);
+  assert.equal(levels.length, 5);
+  const res = await loadGltf('/example.glb');
+  assert.ok(res.extensionsUsed.includes('MSFT_lod'));
+  assert.deepEqual(res.nodes.map((n) => n.name).sort(), levels.map((l) => `level ${l.level}`).sort());
+  for (const l of levels) {
+    const node = res.nodes.find((n) => n.name === `level ${l.level}`);
+    assert.equal(node.prims.length, 1, `level ${l.level}`);
+    assert.deepEqual(node.prims[0], { vertices: l.vertices, triangles: l.triangles, hash: l.hash }, `level ${l.level}`);
+  }
+  // Viewers without MSFT_lod draw the finest level.
+  const finest = levels[levels.length - 1];
+  assert.deepEqual(res.scene, [{ vertices: finest.vertices, triangles: finest.triangles }]);
+});
+
+test('GLTFLoader with DRACOLoader reads `dbss export --draco`: every level\'s counts, the finest level\'s bits', async () => {
+  const levels = nativeLevels(files['/example.dbss']);
+  const res = await loadGltf('/example-draco.glb');
+  assert.ok(res.extensionsUsed.includes('KHR_draco_mesh_compression'));
+  for (const l of levels) {
+    const node = res.nodes.find((n) => n.name === `level ${l.level}`);
+    assert.ok(node, `level ${l.level}`);
+    assert.equal(node.prims.length, 1);
+    assert.equal(node.prims[0].vertices, l.vertices, `level ${l.level} vertices`);
+    assert.equal(node.prims[0].triangles, l.triangles, `level ${l.level} triangles`);
+  }
+  const finest = levels[levels.length - 1];
+  assert.equal(res.nodes.find((n) => n.name === `level ${finest.level}`).prims[0].hash, finest.hash);
+});
+
+test('GLTFLoader reads `dbss decode --level 2 -o x.glb`: level 2\'s counts and positions', async () => {
+  const l2 = nativeLevels(files['/example.dbss'])[2];
+  const res = await loadGltf('/level2.glb');
+  const prims = res.nodes.flatMap((n) => n.prims);
+  assert.deepEqual(prims, [{ vertices: l2.vertices, triangles: l2.triangles, hash: l2.hash }]);
+  assert.deepEqual(res.scene, [{ vertices: l2.vertices, triangles: l2.triangles }]);
 });

@@ -10,6 +10,7 @@ namespace dbss {
 enum class Kernels : uint8_t {
   best,      // the fastest the processor runs: AVX2 on x86-64 where it has it, else baseline
   baseline,  // the portable build (SSE2 on x86-64), on any processor
+  scalar,    // three scalar lanes per point, no vectors: all that WebAssembly builds
 };
 
 }  // namespace dbss
