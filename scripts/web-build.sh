@@ -15,6 +15,11 @@ root=$PWD
 out=${1:-build-web}
 mkdir -p "$out"
 out=$(cd "$out" && pwd)
+# One build per output folder at a time: two at once leave a JS glue file
+# that does not match its wasm (the module then fails to load with a
+# LinkError).  A second run waits for the first.
+exec 9>"$out/.web-build.lock"
+flock 9
 jobs=$(nproc 2>/dev/null || echo 2)
 
 bash scripts/install-deps.sh web
