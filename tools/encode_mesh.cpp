@@ -19,7 +19,10 @@ int run_encode_mesh(const std::string& input, const std::string& output, const T
   auto encoded = encode_mesh(mesh, options);
   progress.done();
   if (!encoded.ok()) {
-    std::fprintf(stderr, "dbss encode: %s: %s\n", input.c_str(), encoded.status().to_string().c_str());
+    // Bad input is named plainly; anything else carries its code.
+    const Status& s = encoded.status();
+    std::fprintf(stderr, "dbss encode: %s: %s\n", input.c_str(),
+                 (s.code() == ErrorCode::invalid_argument ? s.message() : s.to_string()).c_str());
     return encoded.status().code() == ErrorCode::internal ? 2 : 1;
   }
   const MeshEncoding& me = encoded.value();
