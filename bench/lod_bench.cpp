@@ -5,13 +5,15 @@
 // bounding-box diagonal (measure/mesh_distance).  Also: dbss's QEM against
 // meshoptimizer's simplifier for the control mesh.
 //
-//   lod_bench [--levels N] [--errors E1,E2,..] [--samples N] [--skip-absent] MESH...
+//   lod_bench [--levels N] [--control-faces F] [--cut-holes H] [--errors E1,E2,..] [--samples N] [--skip-absent] MESH...
 //
 // With no MESH: the libcgal-demo meshes under test-data/ (closed, with
-// holes, several components).  --skip-absent: exit 77 when a mesh is missing.
+// holes, several components); --cut-holes H adds each mesh again with H
+// holes cut in it.  --skip-absent: exit 77 when a mesh is missing.
 #include <meshoptimizer.h>
 
 #include <algorithm>
+#include <cmath>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -42,9 +44,11 @@ constexpr int kDracoSpeed = 3;
 
 struct Args {
   uint32_t levels = 4;
+  uint32_t control_faces = 0;  // 0: the encoder's default
   std::vector<double> errors = {1e-4, 3e-5};
   size_t samples = 100000;
   bool skip_absent = false;
+  uint32_t cut_holes = 0;  // also run each closed mesh with this many holes cut in it
   std::vector<std::string> meshes;
 };
 
@@ -99,12 +103,33 @@ std::string topo(const MeshInfo& i) {
   return std::to_string(i.components) + " cc, genus " + std::to_string(i.genus) + ", " + std::to_string(i.boundary_loops) + " loops";
 }
 
-int run_mesh(const std::string& path, const Args& args) {
+// `count` holes cut in a mesh: the triangles with a corner within 4% of the
+// diagonal of vertices spread through the vertex list, removed.
+TriangleMesh cut_holes(const TriangleMesh& m, uint32_t count) {
+  const double r2 = std::pow(0.04 * diagonal(m), 2);
+  std::vector<uint8_t> gone(m.vertex_count(), 0);
+  for (uint32_t k = 1; k <= count; ++k) {
+    const size_t seed = m.vertex_count() * k / (count + 1);
+    for (size_t v = 0; v < m.vertex_count(); ++v) {
+      double d = 0;
+      for (int a = 0; a < 3; ++a) d += std::pow(double(m.positions[3 * v + a]) - m.positions[3 * seed + a], 2);
+      if (d < r2) gone[v] = 1;
+    }
+  }
+  TriangleMesh out{m.positions, {}};
+  for (size_t f = 0; f < m.triangle_count(); ++f)
+    if (!gone[m.triangles[3 * f]] && !gone[m.triangles[3 * f + 1]] && !gone[m.triangles[3 * f + 2]])
+      out.triangles.insert(out.triangles.end(), m.triangles.begin() + 3 * f, m.triangles.begin() + 3 * f + 3);
+  return out;
+}
+
+int run_mesh(const std::string& path, const Args& args, uint32_t holes = 0) {
   auto read = read_mesh(path);
   if (!read.ok()) {
     std::fprintf(stderr, "lod_bench: %s\n", read.status().message().c_str());
     return 1;
   }
+  if (holes) read.value() = cut_holes(read.value(), holes);
   auto prepared = prepare_mesh_input(read.value());
   if (!prepared.ok()) {
     std::fprintf(stderr, "lod_bench: %s: %s\n", path.c_str(), prepared.status().message().c_str());
@@ -116,7 +141,8 @@ int run_mesh(const std::string& path, const Args& args) {
   MeshDistanceOptions mo;
   mo.samples = args.samples;
   mo.threads = 2;
-  const std::string name = std::filesystem::path(path).filename().string();
+  const std::string name = std::filesystem::path(path).filename().string() +
+                           (holes ? " with " + std::to_string(holes) + " holes cut" : std::string());
   std::printf("\n## %s: %zu vertices, %zu triangles, %s\n", name.c_str(), input.vertex_count(), input.triangle_count(),
               topo(info).c_str());
 
@@ -161,6 +187,7 @@ int run_mesh(const std::string& path, const Args& args) {
   for (double err : args.errors) {
     EncodeOptions o;
     o.levels = args.levels;
+    o.control.control_faces = args.control_faces;
     o.error = err;
     o.threads = 2;
     auto t = Clock::now();
@@ -207,11 +234,14 @@ int run_mesh(const std::string& path, const Args& args) {
   const Encoding& en = encodings.front().encoding;
   std::printf("\none .dbss (error target %g) vs a meshoptimizer LOD chain + Draco at matching error:\n\n", args.errors.front());
   std::printf("| level | triangles | dbss error | LOD triangles | LOD qp | LOD error | LOD bytes | dbss decode ms (0..l) | Draco decode ms |\n|---|---|---|---|---|---|---|---|---|\n");
-  size_t chain = 0;
+  // Levels with at least the input's triangles get the input itself as
+  // their LOD: it is stored once, at the qp the strictest of them needs.
+  size_t chain = 0, input_lod = 0;
   bool all_matched = true;
   for (uint32_t l = 0; l <= en.level_count; ++l) {
     const Row& r = rows[l];
-    const TriangleMesh lod = r.triangles >= input.triangle_count() ? input : meshopt(input, r.triangles, 0);
+    const bool is_input = r.triangles >= input.triangle_count();
+    const TriangleMesh lod = is_input ? input : meshopt(input, r.triangles, 0);
     DracoResult pick;
     bool matched = false;
     for (int qp = 8; qp <= 16 && !matched; ++qp) {
@@ -219,11 +249,14 @@ int run_mesh(const std::string& path, const Args& args) {
       matched = pick.error <= r.error;
     }
     all_matched = all_matched && matched;
-    chain += pick.bytes;
-    std::printf("| %u | %zu | %.2e | %zu | %d%s | %.2e | %zu | %.1f | %.1f |\n", l, r.triangles, r.error, lod.triangle_count(), pick.qp,
-                matched ? "" : " (not matched)", pick.error, pick.bytes, 1e3 * r.decode_s, 1e3 * pick.decode_s);
+    if (is_input) input_lod = std::max(input_lod, pick.bytes);
+    else chain += pick.bytes;
+    std::printf("| %u | %zu | %.2e | %zu%s | %d%s | %.2e | %zu | %.1f | %.1f |\n", l, r.triangles, r.error, lod.triangle_count(),
+                is_input ? " (the input)" : "", pick.qp, matched ? "" : " (not matched)", pick.error, pick.bytes, 1e3 * r.decode_s,
+                1e3 * pick.decode_s);
   }
-  std::printf("\ntotal: .dbss %zu bytes, LOD chain %zu bytes: %.2f x%s\n", en.bytes.size(), chain,
+  chain += input_lod;
+  std::printf("\ntotal: .dbss %zu bytes, LOD chain %zu bytes (the input counted once): %.2f x%s\n", en.bytes.size(), chain,
               double(en.bytes.size()) / chain, all_matched ? "" : " (some LODs cannot reach dbss's error at qp 16)");
   return 0;
 }
@@ -235,6 +268,8 @@ int main(int argc, char** argv) {
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--levels" && i + 1 < argc) args.levels = static_cast<uint32_t>(std::atoi(argv[++i]));
+    else if (a == "--cut-holes" && i + 1 < argc) args.cut_holes = static_cast<uint32_t>(std::atoi(argv[++i]));
+    else if (a == "--control-faces" && i + 1 < argc) args.control_faces = static_cast<uint32_t>(std::atoi(argv[++i]));
     else if (a == "--samples" && i + 1 < argc) args.samples = static_cast<size_t>(std::atol(argv[++i]));
     else if (a == "--errors" && i + 1 < argc) {
       args.errors.clear();
@@ -246,7 +281,7 @@ int main(int argc, char** argv) {
       }
     } else if (a == "--skip-absent") args.skip_absent = true;
     else if (!a.empty() && a[0] == '-') {
-      std::fprintf(stderr, "usage: lod_bench [--levels N] [--errors E1,E2] [--samples N] [--skip-absent] MESH...\n");
+      std::fprintf(stderr, "usage: lod_bench [--levels N] [--control-faces F] [--cut-holes H] [--errors E1,E2] [--samples N] [--skip-absent] MESH...\n");
       return 1;
     } else args.meshes.push_back(a);
   }
@@ -259,6 +294,9 @@ int main(int argc, char** argv) {
       return args.skip_absent ? 77 : 1;
     }
   int rc = 0;
-  for (const std::string& m : args.meshes) rc = std::max(rc, run_mesh(m, args));
+  for (const std::string& m : args.meshes) {
+    rc = std::max(rc, run_mesh(m, args));
+    if (args.cut_holes) rc = std::max(rc, run_mesh(m, args, args.cut_holes));
+  }
   return rc;
 }
