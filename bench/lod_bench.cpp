@@ -147,7 +147,8 @@ int run_mesh(const std::string& path, const Args& args, uint32_t holes = 0) {
               topo(info).c_str());
 
   // The control mesh's simplifier: dbss's QEM against meshoptimizer's.
-  const uint32_t target = default_control_faces(static_cast<uint32_t>(input.triangle_count()), info.genus);
+  const uint32_t target = args.control_faces ? args.control_faces
+                                             : default_control_faces(static_cast<uint32_t>(input.triangle_count()), info.genus);
   std::printf("\ncontrol mesh simplifier, target %u triangles:\n\n", target);
   std::printf("| simplifier | ms | triangles | topology | error |\n|---|---|---|---|---|\n");
   {
