@@ -82,6 +82,16 @@ Result<MeshEncoding> encode_mesh(const TriangleMesh& mesh, const EncodeOptions& 
   e.control = std::move(decoded).value();
   auto topo = build_topology(static_cast<uint32_t>(e.control.vertex_count()), e.control.triangles);
   if (!topo.ok()) return Status(ErrorCode::internal, "control mesh after Draco: " + topo.status().to_string());
+  {
+    // Every level is a 1-to-4 split of the control mesh, so it has the
+    // control mesh's topology: checking the one Draco gave back (its
+    // rounding may not merge or fold anything that matters) is checking
+    // them all.
+    const MeshInfo got = mesh_info(e.control);
+    const MeshInfo& want = me.input_info;
+    if (got.genus != want.genus || got.components != want.components || got.boundary_loops != want.boundary_loops)
+      return Status(ErrorCode::internal, "the control mesh after Draco lost the input's topology");
+  }
   e.seconds.draco = since(t);
   c.header.control_position_bits = static_cast<uint8_t>(e.control_bits);
   c.header.control_vertex_count = static_cast<uint32_t>(e.control.vertex_count());
