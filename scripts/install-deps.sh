@@ -12,6 +12,7 @@ packages=(
   libopenmesh-dev                                # QEM decimation (encoder); differential tests
   catch2                                         # tests (Catch2 v2)
   libcgal-dev                                    # rd_bench's peers only (reconstruction); header-only
+  libmeshoptimizer-dev                           # lod_bench only: the LOD chain it compares against
   pybind11-dev python3-dev python3-numpy         # the Python module (python/, DBSS_BUILD_PYTHON) for /usr/bin/python3
   python3-pytest python3-dask python3-distributed  # its tests; dbss.batch's engine
 )

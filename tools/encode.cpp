@@ -1,4 +1,5 @@
 #include "encode.h"
+#include "encode_mesh.h"
 #include "encode_options.h"
 #include "progress.h"
 
@@ -24,11 +25,16 @@ namespace {
 constexpr const char* kHelpHead =
     "usage: dbss encode INPUT -o OUT.dbss [options]\n"
     "\n"
-    "Reconstructs a surface from the points of INPUT (.ply, .obj, .off, .xyz,\n"
-    ".stl, .glb, .gltf; mesh files give their vertices) and writes it as a .dbss\n"
-    "file.\n"
+    "Encodes INPUT (.ply, .obj, .off, .xyz, .stl, .glb, .gltf) as a .dbss file.\n"
+    "A file with faces is encoded as a mesh: the control mesh is simplified\n"
+    "from it (genus, components and boundaries kept) and displacements are\n"
+    "cast against its triangles; it must be an oriented manifold.  A point\n"
+    "file (or --input points) has a surface reconstructed from its points.\n"
+    "Texture coordinates, colours and normals are not carried over.\n"
     "\n"
     "  -o, --output FILE      the .dbss to write (replaced atomically)\n"
+    "  --input points|mesh    read a mesh file's triangles (mesh, the default\n"
+    "                         for a file with faces) or only its vertices\n"
     ;
 constexpr const char* kHelpTail =
     "  --strict               fail (exit 1, nothing written) when the self-check\n"
@@ -56,6 +62,7 @@ int usage(const std::string& message) {
 int run_encode(const std::vector<std::string_view>& args) {
   std::string input, output, dump;
   bool strict = false;
+  std::string input_mode;  // "", "points" or "mesh"
   EncodeOptions options;
   options.levels = kAutoLevels;  // the command's default: as many levels as the points support
   for (size_t i = 0; i < args.size(); ++i) {
@@ -72,6 +79,10 @@ int run_encode(const std::vector<std::string_view>& args) {
     } else if (a == "-o" || a == "--output") {
       if (i + 1 >= args.size()) return usage("-o needs a file name");
       output = args[++i];
+    } else if (a == "--input") {
+      if (i + 1 >= args.size() || (args[i + 1] != "points" && args[i + 1] != "mesh"))
+        return usage("--input needs points or mesh");
+      input_mode = args[++i];
     } else if (a == "--strict") {
       strict = true;
     } else if (a == "--dump-stages") {
@@ -108,8 +119,27 @@ int run_encode(const std::vector<std::string_view>& args) {
     }
   }
   using Clock = std::chrono::steady_clock;
-  Progress progress("dbss encode");
   const auto t0 = Clock::now();
+  if (input_mode != "points") {
+    // A file with faces is a mesh unless told otherwise; a point file falls
+    // through to reconstruction (unless --input mesh asked for faces).
+    auto geometry = read_geometry(input);
+    if (!geometry.ok()) {
+      std::fprintf(stderr, "dbss encode: %s\n", geometry.status().message().c_str());
+      return 1;
+    }
+    if (!geometry.value().triangles.empty()) {
+      if (!dump.empty()) return usage("--dump-stages is for point input (the stages of reconstruction)");
+      const TriangleMesh mesh{std::move(geometry.value().points.xyz), std::move(geometry.value().triangles)};
+      return run_encode_mesh(input, output, mesh, options,
+                             std::chrono::duration<double>(Clock::now() - t0).count());
+    }
+    if (input_mode == "mesh") {
+      std::fprintf(stderr, "dbss encode: %s: --input mesh, but the file has no faces\n", input.c_str());
+      return 1;
+    }
+  }
+  Progress progress("dbss encode");
   auto points = read_points(input);
   if (!points.ok()) {
     std::fprintf(stderr, "dbss encode: %s\n", points.status().message().c_str());

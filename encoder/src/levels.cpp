@@ -58,20 +58,37 @@ Result<std::vector<uint8_t>> choose_coding(format::Level& level, int zstd_level)
 
 Result<EncodedLevels> encode_levels(const TriangleMesh& control, const PointIndex& points,
                                     const LevelEncodeOptions& o) {
+  // The scratch pool lives as long as the encoding; each sample borrows one.
+  auto scratch = std::make_shared<ScratchPool>();
+  LevelSampler sampler;
+  sampler.sample = [&points, scratch](uint32_t, const double p[3], const double n[3], double half_length) {
+    SampleScratch& mine = scratch->take();
+    const Sample s = sample_displacement(points, p, n, half_length, half_length, mine);
+    scratch->give(mine);
+    return s;
+  };
+  const size_t point_count = points.points().size();
+  sampler.dead_zone = [point_count](size_t odd) { return dead_zone_steps(odd, point_count); };
+  return encode_levels(control, sampler, o);
+}
+
+Result<EncodedLevels> encode_levels(const TriangleMesh& control, const LevelSampler& sampler,
+                                    const LevelEncodeOptions& o) {
   const float step = o.step;
   if (!(step > 0) || !std::isfinite(step)) return Status(ErrorCode::invalid_argument, "the step must be finite and positive");
+  if (!sampler.sample) return Status(ErrorCode::invalid_argument, "no displacement sampler");
   auto refiner = LevelRefiner::create(control);
   if (!refiner.ok()) return refiner.status();
   LevelRefiner& r = refiner.value();
   EncodedLevels out;
-  ScratchPool scratch;
   out.positions.push_back(control.positions);
   out.triangles.push_back(control.triangles);
   for (uint32_t l = 1; l <= o.levels; ++l) {
     if (o.on_level) o.on_level(l);
+    if (sampler.begin_level) sampler.begin_level(l, r.positions(), r.triangles());
     // Per odd vertex, written by whichever thread samples it, summed after.
     const size_t odd = static_cast<size_t>(r.next_odd_count());
-    const double dead_zone = dead_zone_steps(odd, points.points().size());
+    const double dead_zone = sampler.dead_zone ? sampler.dead_zone(odd) : 0.5;
     std::vector<uint8_t> source(odd, 0xFF), clamped(odd, 0), fitted(odd, 0);
     std::vector<double> magnitude(odd, 0.0);
     // The decoder's own step: it computes each odd vertex's undisplaced
@@ -81,9 +98,7 @@ Result<EncodedLevels> encode_levels(const TriangleMesh& control, const PointInde
     const OddChooser choose = [&](uint32_t e, const double p[3], const double n[3], const float* a, const float* b) {
       if (n[0] == 0 && n[1] == 0 && n[2] == 0) return int32_t{0};  // degenerate: the decoder will not move it
       const double len = std::sqrt(std::pow(a[0] - b[0], 2.0) + std::pow(a[1] - b[1], 2.0) + std::pow(a[2] - b[2], 2.0));
-      SampleScratch& mine = scratch.take();
-      const Sample s = sample_displacement(points, p, n, 0.5 * len, 0.5 * len, mine);
-      scratch.give(mine);
+      const Sample s = sampler.sample(e, p, n, 0.5 * len);
       const Quantized q = quantize(s.distance, step, dead_zone);
       source[e] = static_cast<uint8_t>(s.source);
       fitted[e] = s.fitted;

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <numeric>
+#include <utility>
 
 namespace dbss {
 
@@ -146,6 +147,151 @@ double TriangleTree::distance(const double p[3]) const {
     stack[top++] = left_first ? n.first : n.first + 1;
   }
   return std::sqrt(best);
+}
+
+}  // namespace dbss
+
+namespace dbss {
+
+namespace {
+// The closest point of triangle abc to p (the same regions as
+// point_triangle_distance2, returning the point).
+void closest_on_triangle(const double p[3], const double a[3], const double b[3], const double c[3], double out[3]) {
+  double ab[3], ac[3], ap[3];
+  sub3(b, a, ab), sub3(c, a, ac), sub3(p, a, ap);
+  auto set = [&](const double* s, const double* dir, double t) {
+    for (int k = 0; k < 3; ++k) out[k] = s[k] + t * dir[k];
+  };
+  const double d1 = dot3(ab, ap), d2 = dot3(ac, ap);
+  if (d1 <= 0 && d2 <= 0) return set(a, ab, 0);
+  double bp[3];
+  sub3(p, b, bp);
+  const double d3 = dot3(ab, bp), d4 = dot3(ac, bp);
+  if (d3 >= 0 && d4 <= d3) return set(b, ab, 0);
+  double cp[3];
+  sub3(p, c, cp);
+  const double d5 = dot3(ab, cp), d6 = dot3(ac, cp);
+  if (d6 >= 0 && d5 <= d6) return set(c, ab, 0);
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) return set(a, ab, d1 / (d1 - d3));
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) return set(a, ac, d2 / (d2 - d6));
+  const double bc[3] = {c[0] - b[0], c[1] - b[1], c[2] - b[2]};
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) return set(b, bc, (d4 - d3) / ((d4 - d3) + (d5 - d6)));
+  const double sum = va + vb + vc;
+  if (!(sum > 0)) {
+    // Degenerate: the nearest of its three edges.
+    out[0] = a[0], out[1] = a[1], out[2] = a[2];
+    double best = std::numeric_limits<double>::infinity();
+    using Seg = std::pair<const double*, const double*>;
+    for (const auto& [s, dir] : {Seg{a, ab}, Seg{a, ac}, Seg{b, bc}}) {
+      const double l2 = dot3(dir, dir);
+      double sp[3], x[3];
+      sub3(p, s, sp);
+      const double t = l2 > 0 ? std::clamp(dot3(sp, dir) / l2, 0.0, 1.0) : 0.0;
+      for (int k = 0; k < 3; ++k) x[k] = s[k] + t * dir[k];
+      if (const double d = dist2(p, x); d < best) best = d, out[0] = x[0], out[1] = x[1], out[2] = x[2];
+    }
+    return;
+  }
+  const double v = vb / sum, w = vc / sum;
+  for (int k = 0; k < 3; ++k) out[k] = a[k] + ab[k] * v + ac[k] * w;
+}
+
+// Slab test: the parameter interval of the line p + t dir inside the box,
+// intersected with [lo_t, hi_t]; false when empty.
+bool line_box(const double* p, const double* inv, const double* lo, const double* hi, double lo_t, double hi_t) {
+  for (int a = 0; a < 3; ++a) {
+    double t0 = (lo[a] - p[a]) * inv[a], t1 = (hi[a] - p[a]) * inv[a];
+    if (std::isnan(t0) || std::isnan(t1)) {  // dir[a] == 0 with p on a slab plane
+      if (p[a] < lo[a] || p[a] > hi[a]) return false;
+      continue;
+    }
+    if (t0 > t1) std::swap(t0, t1);
+    lo_t = std::max(lo_t, t0), hi_t = std::min(hi_t, t1);
+    if (lo_t > hi_t) return false;
+  }
+  return true;
+}
+}  // namespace
+
+double TriangleTree::closest_point(const double p[3], double out[3]) const {
+  out[0] = p[0], out[1] = p[1], out[2] = p[2];
+  double best = std::numeric_limits<double>::infinity();
+  if (nodes_.empty()) return best;
+  uint32_t stack[128];
+  int top = 0;
+  stack[top++] = 0;
+  while (top > 0) {
+    const Node& n = nodes_[stack[--top]];
+    if (box_distance2(p, n.lo, n.hi) >= best) continue;
+    if (n.count > 0) {
+      for (uint32_t j = n.first; j < n.first + n.count; ++j) {
+        const double* t = &corners_[9 * size_t{j}];
+        double x[3] = {t[0], t[1], t[2]};
+        closest_on_triangle(p, t, t + 3, t + 6, x);
+        if (const double d = dist2(p, x); d < best) best = d, out[0] = x[0], out[1] = x[1], out[2] = x[2];
+      }
+      continue;
+    }
+    const Node& l = nodes_[n.first];
+    const Node& r = nodes_[n.first + 1];
+    const bool left_first = box_distance2(p, l.lo, l.hi) <= box_distance2(p, r.lo, r.hi);
+    stack[top++] = left_first ? n.first + 1 : n.first;
+    stack[top++] = left_first ? n.first : n.first + 1;
+  }
+  return std::sqrt(best);
+}
+
+bool TriangleTree::nearest_line_hit(const double p[3], const double dir[3], double limit, double& t_out) const {
+  if (nodes_.empty()) return false;
+  const double inv[3] = {1 / dir[0], 1 / dir[1], 1 / dir[2]};
+  // Best facing hit and best hit of any facing, by |t|.
+  double facing = std::numeric_limits<double>::infinity(), any = facing, t_facing = 0, t_any = 0;
+  uint32_t stack[128];
+  int top = 0;
+  stack[top++] = 0;
+  while (top > 0) {
+    const Node& n = nodes_[stack[--top]];
+    // A facing hit is the answer once found; boxes farther than it cannot
+    // improve it (a box only nearer than `any` could still hold a facing one).
+    const double reach = std::min(limit, facing);
+    if (!line_box(p, inv, n.lo, n.hi, -reach, reach)) continue;
+    if (n.count > 0) {
+      for (uint32_t j = n.first; j < n.first + n.count; ++j) {
+        const double* a = &corners_[9 * size_t{j}];
+        const double *b = a + 3, *c = a + 6;
+        // Moller-Trumbore on the full line; barycentric bounds inclusive so
+        // a line through an edge is not lost between two triangles.
+        double e1[3], e2[3], h[3], s[3], q[3];
+        sub3(b, a, e1), sub3(c, a, e2);
+        h[0] = dir[1] * e2[2] - dir[2] * e2[1], h[1] = dir[2] * e2[0] - dir[0] * e2[2], h[2] = dir[0] * e2[1] - dir[1] * e2[0];
+        const double det = dot3(e1, h);
+        if (det == 0 || !std::isfinite(det)) continue;
+        const double f = 1 / det;
+        sub3(p, a, s);
+        const double u = f * dot3(s, h);
+        if (u < 0 || u > 1) continue;
+        q[0] = s[1] * e1[2] - s[2] * e1[1], q[1] = s[2] * e1[0] - s[0] * e1[2], q[2] = s[0] * e1[1] - s[1] * e1[0];
+        const double v = f * dot3(dir, q);
+        if (v < 0 || u + v > 1) continue;
+        const double t = f * dot3(e2, q);
+        const double at = std::abs(t);
+        if (at > limit) continue;
+        // det = e1 . (dir x e2) = -dir . (e1 x e2): negative when the
+        // triangle's normal faces along dir.
+        if (det < 0 && at < facing) facing = at, t_facing = t;
+        if (at < any) any = at, t_any = t;
+      }
+      continue;
+    }
+    stack[top++] = n.first;
+    stack[top++] = n.first + 1;
+  }
+  if (facing <= limit) return t_out = t_facing, true;
+  if (any <= limit) return t_out = t_any, true;
+  return false;
 }
 
 }  // namespace dbss

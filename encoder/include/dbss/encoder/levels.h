@@ -6,11 +6,13 @@
 
 #include <cstdint>
 #include <functional>
+#include <span>
 #include <vector>
 
 #include "dbss/decoder/mesh.h"
 #include "dbss/encoder/point_index.h"
 #include "dbss/encoder/quantize.h"
+#include "dbss/encoder/sampling.h"
 #include "dbss/format/container.h"
 #include "dbss/format/status.h"
 
@@ -53,8 +55,29 @@ struct EncodedLevels {
 // bytes are kept so nobody compresses the level again).
 Result<std::vector<uint8_t>> choose_coding(format::Level& level, int zstd_level);
 
-// `control` must be the Draco-decoded control mesh.
+// Where the displacements come from: the closed loop (subdivision,
+// quantization, continuing from what a decoder computes) is the same for
+// every source; only the sample of each odd vertex differs.
+struct LevelSampler {
+  // Called before each level l >= 1 is sampled, with the level it refines
+  // (l - 1, as a decoder holds it); odd vertex `odd` of level l sits on edge
+  // `odd` of that mesh in the canonical edge order.  May be empty.
+  std::function<void(uint32_t level, std::span<const float> positions, std::span<const uint32_t> triangles)> begin_level;
+  // The signed distance along the unit normal `n` from the undisplaced odd
+  // vertex `p` to the surface, clamped to half_length (half its edge's
+  // length).  Called from several threads at once.
+  std::function<Sample(uint32_t odd, const double p[3], const double n[3], double half_length)> sample;
+  // The quantizer's dead zone in steps for a level of `odd` samples; empty:
+  // plain rounding (0.5).
+  std::function<double(size_t odd)> dead_zone;
+};
+
+// `control` must be the Draco-decoded control mesh.  Displacements from
+// the points (sample_displacement, the dead zone past their density).
 Result<EncodedLevels> encode_levels(const TriangleMesh& control, const PointIndex& points,
+                                    const LevelEncodeOptions& options);
+// The same loop with displacements from `sampler`.
+Result<EncodedLevels> encode_levels(const TriangleMesh& control, const LevelSampler& sampler,
                                     const LevelEncodeOptions& options);
 
 }  // namespace dbss

@@ -24,6 +24,15 @@ class TriangleTree {
   // without triangles).
   double distance(const double p[3]) const;
   size_t triangle_count() const noexcept { return corners_.size() / 9; }
+  // The closest point of the surface to p, written to `out` (p itself for a
+  // mesh without triangles); returns its distance.
+  double closest_point(const double p[3], double out[3]) const;
+  // Where the line p + t * dir (dir of unit length) crosses the surface
+  // within |t| <= limit: the crossing of least |t|, preferring triangles
+  // that face the same way as dir (dot of their normal with dir > 0) over
+  // those facing away, so a line from a thin part's outside takes its near
+  // sheet.  Returns false when the line meets no triangle there.
+  bool nearest_line_hit(const double p[3], const double dir[3], double limit, double& t) const;
 
  private:
   struct Node {

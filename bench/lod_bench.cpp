@@ -1,0 +1,303 @@
+// LOD asset storage (issue 18): dbss encoded from a mesh against Draco on
+// the same mesh, and one .dbss against a meshoptimizer LOD chain with each
+// LOD Draco-compressed at the error dbss reaches at that level.  Every
+// error is the two-sided mean distance to the input mesh over its
+// bounding-box diagonal (measure/mesh_distance).  Also: dbss's QEM against
+// meshoptimizer's simplifier for the control mesh.
+//
+//   lod_bench [--levels N] [--control-faces F] [--cut-holes H] [--errors E1,E2,..] [--samples N] [--skip-absent] MESH...
+//
+// With no MESH: the libcgal-demo meshes under test-data/ (closed, with
+// holes, several components); --cut-holes H adds each mesh again with H
+// holes cut in it.  --skip-absent: exit 77 when a mesh is missing.
+#include <meshoptimizer.h>
+
+#include <algorithm>
+#include <cmath>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "dbss/decoder/control_mesh.h"
+#include "dbss/decoder/progressive.h"
+#include "dbss/encoder/encode_mesh.h"
+#include "dbss/encoder/mesh_info.h"
+#include "dbss/encoder/mesh_input.h"
+#include "dbss/encoder/simplify.h"
+#include "dbss/io/draco_mesh.h"
+#include "dbss/io/geometry_files.h"
+#include "dbss/measure/mesh_distance.h"
+#include "timing.h"
+
+using namespace dbss;
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+// Draco at compression level 7 (speed 3), as the issue's anchors.
+constexpr int kDracoSpeed = 3;
+
+struct Args {
+  uint32_t levels = 4;
+  uint32_t control_faces = 0;  // 0: the encoder's default
+  std::vector<double> errors = {1e-4, 3e-5};
+  size_t samples = 100000;
+  bool skip_absent = false;
+  uint32_t cut_holes = 0;  // also run each closed mesh with this many holes cut in it
+  std::vector<std::string> meshes;
+};
+
+double diagonal(const TriangleMesh& m) {
+  float lo[3] = {m.positions[0], m.positions[1], m.positions[2]}, hi[3] = {lo[0], lo[1], lo[2]};
+  for (size_t i = 0; i < m.vertex_count(); ++i)
+    for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], m.positions[3 * i + a]), hi[a] = std::max(hi[a], m.positions[3 * i + a]);
+  double d = 0;
+  for (int a = 0; a < 3; ++a) d += (double(hi[a]) - lo[a]) * (double(hi[a]) - lo[a]);
+  return std::sqrt(d);
+}
+
+struct DracoResult {
+  int qp = 0;
+  size_t bytes = 0;
+  double error = 0, encode_s = 0, decode_s = 0;
+};
+
+DracoResult draco(const TriangleMesh& m, int qp, const TriangleMesh& input, double diag, const MeshDistanceOptions& mo) {
+  DracoResult r;
+  r.qp = qp;
+  std::vector<uint8_t> bytes;
+  r.encode_s = bench::best_seconds([&] { bytes = io::draco_encode(m, {qp, kDracoSpeed}, "LOD").value(); }, 0.2);
+  r.bytes = bytes.size();
+  TriangleMesh decoded;
+  r.decode_s = bench::best_seconds([&] { decoded = decode_control_mesh(bytes, 1u << 30, 1u << 30).value(); }, 0.2);
+  r.error = mesh_distance(decoded, input, mo).mean() / diag;
+  return r;
+}
+
+TriangleMesh meshopt(const TriangleMesh& m, size_t target_faces, unsigned options) {
+  std::vector<uint32_t> out(m.triangles.size());
+  const size_t n = meshopt_simplify(out.data(), m.triangles.data(), m.triangles.size(), m.positions.data(), m.vertex_count(),
+                                    3 * sizeof(float), 3 * target_faces, 1.0f, options, nullptr);
+  out.resize(n);
+  // Keep only the vertices still used, as a file would.
+  TriangleMesh r;
+  std::vector<uint32_t> remap(m.vertex_count(), ~0u);
+  for (uint32_t& v : out) {
+    if (remap[v] == ~0u) {
+      remap[v] = static_cast<uint32_t>(r.vertex_count());
+      r.positions.insert(r.positions.end(), m.positions.begin() + 3 * v, m.positions.begin() + 3 * v + 3);
+    }
+    v = remap[v];
+  }
+  r.triangles = std::move(out);
+  return r;
+}
+
+std::string topo(const MeshInfo& i) {
+  if (!i.manifold) return "not manifold";
+  return std::to_string(i.components) + " cc, genus " + std::to_string(i.genus) + ", " + std::to_string(i.boundary_loops) + " loops";
+}
+
+// `count` holes cut in a mesh: the triangles with a corner within 4% of the
+// diagonal of vertices spread through the vertex list, removed.
+TriangleMesh cut_holes(const TriangleMesh& m, uint32_t count) {
+  const double r2 = std::pow(0.04 * diagonal(m), 2);
+  std::vector<uint8_t> gone(m.vertex_count(), 0);
+  for (uint32_t k = 1; k <= count; ++k) {
+    const size_t seed = m.vertex_count() * k / (count + 1);
+    for (size_t v = 0; v < m.vertex_count(); ++v) {
+      double d = 0;
+      for (int a = 0; a < 3; ++a) d += std::pow(double(m.positions[3 * v + a]) - m.positions[3 * seed + a], 2);
+      if (d < r2) gone[v] = 1;
+    }
+  }
+  TriangleMesh out{m.positions, {}};
+  for (size_t f = 0; f < m.triangle_count(); ++f)
+    if (!gone[m.triangles[3 * f]] && !gone[m.triangles[3 * f + 1]] && !gone[m.triangles[3 * f + 2]])
+      out.triangles.insert(out.triangles.end(), m.triangles.begin() + 3 * f, m.triangles.begin() + 3 * f + 3);
+  return out;
+}
+
+int run_mesh(const std::string& path, const Args& args, uint32_t holes = 0) {
+  auto read = read_mesh(path);
+  if (!read.ok()) {
+    std::fprintf(stderr, "lod_bench: %s\n", read.status().message().c_str());
+    return 1;
+  }
+  if (holes) read.value() = cut_holes(read.value(), holes);
+  auto prepared = prepare_mesh_input(read.value());
+  if (!prepared.ok()) {
+    std::fprintf(stderr, "lod_bench: %s: %s\n", path.c_str(), prepared.status().message().c_str());
+    return 1;
+  }
+  const TriangleMesh input = std::move(prepared).value();
+  const MeshInfo info = mesh_info(input);
+  const double diag = diagonal(input);
+  MeshDistanceOptions mo;
+  mo.samples = args.samples;
+  mo.threads = 2;
+  const std::string name = std::filesystem::path(path).filename().string() +
+                           (holes ? " with " + std::to_string(holes) + " holes cut" : std::string());
+  std::printf("\n## %s: %zu vertices, %zu triangles, %s\n", name.c_str(), input.vertex_count(), input.triangle_count(),
+              topo(info).c_str());
+
+  // The control mesh's simplifier: dbss's QEM against meshoptimizer's.
+  const uint32_t target = args.control_faces ? args.control_faces
+                                             : default_control_faces(static_cast<uint32_t>(input.triangle_count()), info.genus);
+  std::printf("\ncontrol mesh simplifier, target %u triangles:\n\n", target);
+  std::printf("| simplifier | ms | triangles | topology | error |\n|---|---|---|---|---|\n");
+  {
+    auto t = Clock::now();
+    const TriangleMesh q = simplify_mesh(input, target).value();
+    const double s = since(t);
+    std::printf("| dbss QEM (simplify_mesh) | %.0f | %zu | %s | %.2e |\n", 1e3 * s, q.triangle_count(), topo(mesh_info(q)).c_str(),
+                mesh_distance(q, input, mo).mean() / diag);
+    for (unsigned opt : {0u, unsigned(meshopt_SimplifyLockBorder)}) {
+      t = Clock::now();
+      const TriangleMesh m = meshopt(input, target, opt);
+      const double ms = since(t);
+      std::printf("| meshopt_simplify%s | %.0f | %zu | %s | %.2e |\n", opt ? " (lock border)" : "", 1e3 * ms, m.triangle_count(),
+                  topo(mesh_info(m)).c_str(), mesh_distance(m, input, mo).mean() / diag);
+    }
+  }
+
+  // Draco on the input.
+  std::printf("\nDraco (cl7) on the input mesh:\n\n| qp | bytes | error | encode ms | decode ms |\n|---|---|---|---|---|\n");
+  std::vector<DracoResult> dr;
+  for (int qp = 8; qp <= 14; ++qp) {
+    dr.push_back(draco(input, qp, input, diag, mo));
+    const DracoResult& r = dr.back();
+    std::printf("| %d | %zu | %.2e | %.1f | %.1f |\n", qp, r.bytes, r.error, 1e3 * r.encode_s, 1e3 * r.decode_s);
+  }
+
+  // dbss from the mesh, at each error target: per level prefix bytes, error, decode time.
+  struct Row {
+    double target;
+    uint32_t level;
+    size_t triangles;
+    uint64_t prefix;
+    double error, decode_s;
+  };
+  std::vector<Row> rows;
+  std::vector<MeshEncoding> encodings;
+  for (double err : args.errors) {
+    EncodeOptions o;
+    o.levels = args.levels;
+    o.control.control_faces = args.control_faces;
+    o.error = err;
+    o.threads = 2;
+    auto t = Clock::now();
+    auto e = encode_mesh(input, o);
+    const double enc_s = since(t);
+    if (!e.ok()) {
+      std::fprintf(stderr, "lod_bench: %s: %s\n", path.c_str(), e.status().to_string().c_str());
+      return 1;
+    }
+    const Encoding& en = e.value().encoding;
+    std::printf("\ndbss from the mesh, error target %g: encode %.2f s (QEM %.2f s, casting %.2f s), %zu bytes\n\n", err, enc_s,
+                en.seconds.control, en.seconds.levels, en.bytes.size());
+    std::printf("| level | triangles | prefix bytes | error | decode ms (levels 0..l) |\n|---|---|---|---|---|\n");
+    for (uint32_t l = 0; l <= en.level_count; ++l) {
+      const TriangleMesh m{en.levels.positions[l], en.levels.triangles[l]};
+      Row r{err, l, m.triangle_count(), prefix_bytes(en, l), mesh_distance(m, input, mo).mean() / diag, 0};
+      r.decode_s = bench::best_seconds([&] { (void)decode_bytes(en.bytes, static_cast<int>(l)); }, 0.3);
+      std::printf("| %u | %zu | %llu | %.2e | %.1f |\n", l, r.triangles, static_cast<unsigned long long>(r.prefix), r.error,
+                  1e3 * r.decode_s);
+      rows.push_back(r);
+    }
+    encodings.push_back(std::move(e).value());
+  }
+
+  // Equal error: the smallest dbss prefix at or under each Draco error.
+  std::printf("\nequal error (smallest dbss prefix with error <= Draco's):\n\n");
+  std::printf("| Draco qp | Draco bytes | Draco error | dbss prefix | its error | (target, level) | dbss / Draco |\n|---|---|---|---|---|---|---|\n");
+  for (const DracoResult& d : dr) {
+    const Row* best = nullptr;
+    for (const Row& r : rows)
+      if (r.error <= d.error && (!best || r.prefix < best->prefix)) best = &r;
+    if (!best) {
+      std::printf("| %d | %zu | %.2e | - | - | - | not reached |\n", d.qp, d.bytes, d.error);
+      continue;
+    }
+    std::printf("| %d | %zu | %.2e | %llu | %.2e | (%g, %u) | %.2f |\n", d.qp, d.bytes, d.error,
+                static_cast<unsigned long long>(best->prefix), best->error, best->target, best->level,
+                double(best->prefix) / d.bytes);
+  }
+
+  // One .dbss (the first error target) against a meshoptimizer LOD chain of
+  // the same triangle counts, each LOD Draco-compressed at the coarsest qp
+  // whose error is at or under dbss's at that level.
+  const Encoding& en = encodings.front().encoding;
+  std::printf("\none .dbss (error target %g) vs a meshoptimizer LOD chain + Draco at matching error:\n\n", args.errors.front());
+  std::printf("| level | triangles | dbss error | LOD triangles | LOD qp | LOD error | LOD bytes | dbss decode ms (0..l) | Draco decode ms |\n|---|---|---|---|---|---|---|---|---|\n");
+  // Levels with at least the input's triangles get the input itself as
+  // their LOD: it is stored once, at the qp the strictest of them needs.
+  size_t chain = 0, input_lod = 0;
+  bool all_matched = true;
+  for (uint32_t l = 0; l <= en.level_count; ++l) {
+    const Row& r = rows[l];
+    const bool is_input = r.triangles >= input.triangle_count();
+    const TriangleMesh lod = is_input ? input : meshopt(input, r.triangles, 0);
+    DracoResult pick;
+    bool matched = false;
+    for (int qp = 8; qp <= 16 && !matched; ++qp) {
+      pick = draco(lod, qp, input, diag, mo);
+      matched = pick.error <= r.error;
+    }
+    all_matched = all_matched && matched;
+    if (is_input) input_lod = std::max(input_lod, pick.bytes);
+    else chain += pick.bytes;
+    std::printf("| %u | %zu | %.2e | %zu%s | %d%s | %.2e | %zu | %.1f | %.1f |\n", l, r.triangles, r.error, lod.triangle_count(),
+                is_input ? " (the input)" : "", pick.qp, matched ? "" : " (not matched)", pick.error, pick.bytes, 1e3 * r.decode_s,
+                1e3 * pick.decode_s);
+  }
+  chain += input_lod;
+  std::printf("\ntotal: .dbss %zu bytes, LOD chain %zu bytes (the input counted once): %.2f x%s\n", en.bytes.size(), chain,
+              double(en.bytes.size()) / chain, all_matched ? "" : " (some LODs cannot reach dbss's error at qp 16)");
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Args args;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "--levels" && i + 1 < argc) args.levels = static_cast<uint32_t>(std::atoi(argv[++i]));
+    else if (a == "--cut-holes" && i + 1 < argc) args.cut_holes = static_cast<uint32_t>(std::atoi(argv[++i]));
+    else if (a == "--control-faces" && i + 1 < argc) args.control_faces = static_cast<uint32_t>(std::atoi(argv[++i]));
+    else if (a == "--samples" && i + 1 < argc) args.samples = static_cast<size_t>(std::atol(argv[++i]));
+    else if (a == "--errors" && i + 1 < argc) {
+      args.errors.clear();
+      std::string s = argv[++i];
+      for (size_t p = 0; p <= s.size();) {
+        const size_t q = std::min(s.find(',', p), s.size());
+        args.errors.push_back(std::atof(s.substr(p, q - p).c_str()));
+        p = q + 1;
+      }
+    } else if (a == "--skip-absent") args.skip_absent = true;
+    else if (!a.empty() && a[0] == '-') {
+      std::fprintf(stderr, "usage: lod_bench [--levels N] [--control-faces F] [--cut-holes H] [--errors E1,E2] [--samples N] [--skip-absent] MESH...\n");
+      return 1;
+    } else args.meshes.push_back(a);
+  }
+  if (args.meshes.empty())
+    for (const char* m : {"bunny00.off", "armadillo.off", "elephant-with-holes.off", "blobby_3cc.off"})
+      args.meshes.push_back(std::string(DBSS_SOURCE_DIR) + "/test-data/data/meshes/" + m);
+  for (const std::string& m : args.meshes)
+    if (!std::filesystem::exists(m)) {
+      std::fprintf(stderr, "lod_bench: %s: missing%s\n", m.c_str(), args.skip_absent ? " (skipped)" : "");
+      return args.skip_absent ? 77 : 1;
+    }
+  int rc = 0;
+  for (const std::string& m : args.meshes) {
+    rc = std::max(rc, run_mesh(m, args));
+    if (args.cut_holes) rc = std::max(rc, run_mesh(m, args, args.cut_holes));
+  }
+  return rc;
+}

@@ -1,0 +1,153 @@
+#include "dbss/encoder/encode_mesh.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+
+#include "dbss/decoder/control_mesh.h"
+#include "dbss/decoder/topology.h"
+#include "dbss/encoder/control_mesh_codec.h"
+#include "dbss/encoder/quantize.h"
+#include "dbss/encoder/simplify.h"
+#include "dbss/format/writer.h"
+
+namespace dbss {
+
+namespace {
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+}  // namespace
+
+Result<MeshEncoding> encode_mesh(const TriangleMesh& mesh, const EncodeOptions& o) {
+  if (o.control_bits != 0 && (o.control_bits < 8 || o.control_bits > 30))
+    return Status(ErrorCode::invalid_argument, "control bits must be 8..30, or 0 to derive them from the step");
+  if (o.levels > format::kMaxLevelsInFormat && o.levels != kAutoLevels)
+    return Status(ErrorCode::invalid_argument, "too many levels");
+  MeshEncoding me;
+  Encoding& e = me.encoding;
+  auto t = Clock::now();
+  if (o.on_progress) o.on_progress("checking the mesh");
+  auto prepared = prepare_mesh_input(mesh, &me.cleanup);
+  if (!prepared.ok()) return prepared.status();
+  me.input = std::move(prepared).value();
+  me.input_info = mesh_info(me.input);
+  const TriangleMesh& in = me.input;
+  e.points.xyz = in.positions;
+  const MeshSurface surface(in);
+  e.seconds.outliers = since(t);
+
+  t = Clock::now();
+  if (o.on_progress) o.on_progress("simplifying");
+  const uint32_t target = o.control.control_faces
+                              ? o.control.control_faces
+                              : default_control_faces(static_cast<uint32_t>(in.triangle_count()), me.input_info.genus);
+  auto control = control_mesh_from_mesh(in, surface, target, &me.control_stats);
+  if (!control.ok()) return control.status();
+  e.stages.control = std::move(control).value();
+  e.stages.open = !me.input_info.closed;
+  e.stages.surface_reason = "mesh input: " + std::to_string(me.input_info.components) + " component(s), genus " +
+                            std::to_string(me.input_info.genus) + ", " + std::to_string(me.input_info.boundary_loops) +
+                            " boundary loop(s)";
+  e.stages.simplify_stats = {me.control_stats.faces_before, me.control_stats.faces_after};
+  e.seconds.control = since(t);
+
+  format::FileContents& c = e.contents;
+  c.header.bbox_min = {in.positions[0], in.positions[1], in.positions[2]};
+  c.header.bbox_max = c.header.bbox_min;
+  for (size_t i = 0; i < in.vertex_count(); ++i)
+    for (int a = 0; a < 3; ++a) {
+      c.header.bbox_min[a] = std::min(c.header.bbox_min[a], in.positions[3 * i + a]);
+      c.header.bbox_max[a] = std::max(c.header.bbox_max[a], in.positions[3 * i + a]);
+    }
+  double diag2 = 0;
+  for (int a = 0; a < 3; ++a) diag2 += std::pow(double(c.header.bbox_max[a]) - c.header.bbox_min[a], 2);
+  e.diagonal = std::sqrt(diag2);
+  if (!(e.diagonal > 0)) return Status(ErrorCode::invalid_argument, "the mesh has no extent");
+  if (o.step > 0) {
+    e.step = static_cast<float>(o.step);
+    e.error = o.step / (2 * e.diagonal);
+  } else {
+    e.step = quantization_step(o.error, e.diagonal);
+    e.error = o.error;
+  }
+  e.control_bits = o.control_bits ? o.control_bits : control_bits_for_step(e.stages.control, e.step);
+
+  // As encode_points: everything after Draco continues from what a decoder sees.
+  t = Clock::now();
+  auto draco = encode_control_mesh(e.stages.control, {e.control_bits, 0});
+  if (!draco.ok()) return draco.status();
+  auto decoded = decode_control_mesh(draco.value(), 1u << 30, 1u << 30);
+  if (!decoded.ok()) return Status(ErrorCode::internal, "control mesh after Draco: " + decoded.status().to_string());
+  e.control = std::move(decoded).value();
+  auto topo = build_topology(static_cast<uint32_t>(e.control.vertex_count()), e.control.triangles);
+  if (!topo.ok()) return Status(ErrorCode::internal, "control mesh after Draco: " + topo.status().to_string());
+  {
+    // Every level is a 1-to-4 split of the control mesh, so it has the
+    // control mesh's topology: checking the one Draco gave back (its
+    // rounding may not merge or fold anything that matters) is checking
+    // them all.
+    const MeshInfo got = mesh_info(e.control);
+    const MeshInfo& want = me.input_info;
+    if (got.genus != want.genus || got.components != want.components || got.boundary_loops != want.boundary_loops)
+      return Status(ErrorCode::internal, "the control mesh after Draco lost the input's topology");
+  }
+  e.seconds.draco = since(t);
+  c.header.control_position_bits = static_cast<uint8_t>(e.control_bits);
+  c.header.control_vertex_count = static_cast<uint32_t>(e.control.vertex_count());
+  c.header.control_edge_count = topo.value().edge_count();
+  c.header.control_triangle_count = static_cast<uint32_t>(e.control.triangle_count());
+  c.control_mesh = std::move(draco).value();
+  e.level_count = o.levels == kAutoLevels
+                      ? auto_levels({c.header.control_vertex_count, c.header.control_edge_count, c.header.control_triangle_count},
+                                    in.vertex_count())
+                      : o.levels;
+
+  // Displacements cast against the input's triangles; odd vertices on a
+  // boundary edge of the level being refined follow the input's boundary.
+  t = Clock::now();
+  std::vector<uint8_t> rim;
+  LevelSampler sampler;
+  sampler.begin_level = [&](uint32_t, std::span<const float> positions, std::span<const uint32_t> triangles) {
+    rim = surface.has_boundary() ? boundary_edges(static_cast<uint32_t>(positions.size() / 3), triangles)
+                                 : std::vector<uint8_t>{};
+  };
+  sampler.sample = [&](uint32_t odd, const double p[3], const double n[3], double half_length) {
+    return surface.sample(p, n, half_length, odd < rim.size() && rim[odd]);
+  };
+  LevelEncodeOptions lo;
+  lo.levels = e.level_count;
+  lo.step = e.step;
+  lo.zstd_level = o.effort;
+  lo.threads = std::max(1u, o.threads);
+  if (o.on_progress)
+    lo.on_level = [&](uint32_t l) { o.on_progress("casting level " + std::to_string(l) + " of " + std::to_string(e.level_count)); };
+  auto encoded = encode_levels(e.control, sampler, lo);
+  if (!encoded.ok()) return encoded.status();
+  e.levels = std::move(encoded).value();
+  e.seconds.levels = since(t);
+
+  t = Clock::now();
+  c.header.level_count = static_cast<uint8_t>(e.level_count);
+  c.header.error_target = static_cast<float>(e.error);
+  c.levels = e.levels.levels;
+  c.level_data = e.levels.chunks;
+  char error_text[32];
+  std::snprintf(error_text, sizeof error_text, "%g", e.error);
+  const std::string params = "input=mesh control-faces=" + std::to_string(e.control.triangle_count()) +
+                             " control-bits=" + std::to_string(e.control_bits) + " levels=" + std::to_string(e.level_count) +
+                             (o.levels == kAutoLevels ? " (auto)" : "") + " error=" + error_text +
+                             " effort=" + std::to_string(o.effort);
+  c.metadata = {{"encoder", "dbss " + (o.encoder_version.empty() ? std::string("unknown") : o.encoder_version)},
+                {"encoder.params", params}};
+  if (!o.source_name.empty()) c.metadata.push_back({"source", o.source_name});
+  c.metadata.push_back({"surface", e.stages.surface_reason});
+  auto file = format::serialize_with_toc(c, {o.effort});
+  if (!file.ok()) return file.status();
+  e.bytes = std::move(file.value().bytes);
+  e.toc = std::move(file.value().toc);
+  e.seconds.serialize = since(t);
+  return me;
+}
+
+}  // namespace dbss

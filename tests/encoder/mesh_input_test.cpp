@@ -1,0 +1,211 @@
+// Mesh input (encode_mesh): the control mesh simplified from the input,
+// displacements cast against its triangles.  On meshes built here (closed,
+// open, several components) and on libcgal-demo meshes when present: the
+// input's genus, boundary loops and components at every level, the error
+// against the input bounded and falling at the coarse levels, and
+// non-manifold input refused by name.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include "../shapes.h"
+#include "../test_data.h"
+#include "dbss/decoder/progressive.h"
+#include "dbss/encoder/encode_mesh.h"
+#include "dbss/encoder/mesh_info.h"
+#include "dbss/encoder/mesh_input.h"
+#include "dbss/io/geometry_files.h"
+#include "dbss/measure/mesh_distance.h"
+
+using namespace dbss;
+
+namespace {
+
+// An open tube: `rings` circles of `sides` vertices, no caps: genus 0, two
+// boundary loops.  Its radius varies along it so the levels have work.
+TriangleMesh open_cylinder(uint32_t rings, uint32_t sides) {
+  TriangleMesh m;
+  for (uint32_t i = 0; i < rings; ++i) {
+    const double z = 2.0 * i / (rings - 1) - 1.0;
+    const double r = 0.5 + 0.15 * std::cos(3 * z);
+    for (uint32_t j = 0; j < sides; ++j) {
+      const double a = 2 * std::numbers::pi * j / sides;
+      m.positions.insert(m.positions.end(), {static_cast<float>(r * std::cos(a)), static_cast<float>(r * std::sin(a)),
+                                             static_cast<float>(z)});
+    }
+  }
+  for (uint32_t i = 0; i + 1 < rings; ++i)
+    for (uint32_t j = 0; j < sides; ++j) {
+      const uint32_t a = i * sides + j, b = i * sides + (j + 1) % sides, c = a + sides, d = b + sides;
+      m.triangles.insert(m.triangles.end(), {a, b, d, a, d, c});
+    }
+  return m;
+}
+
+// A sphere with two holes: the triangles whose centroid lies in a cap
+// around +x or around +y removed (two discs, so two boundary loops).
+TriangleMesh sphere_with_holes(uint32_t rings, uint32_t sides) {
+  TriangleMesh s = test::uv_sphere(rings, sides);
+  std::vector<uint32_t> kept;
+  for (size_t f = 0; f < s.triangle_count(); ++f) {
+    double c[3] = {0, 0, 0};
+    for (int k = 0; k < 3; ++k)
+      for (int a = 0; a < 3; ++a) c[a] += s.positions[3 * size_t{s.triangles[3 * f + k]} + a] / 3.0;
+    if (c[0] > 0.8 || c[1] > 0.8) continue;
+    kept.insert(kept.end(), s.triangles.begin() + 3 * f, s.triangles.begin() + 3 * f + 3);
+  }
+  s.triangles = kept;
+  // The vertices inside the holes go (they are on no triangle).
+  return prepare_mesh_input(s).value();
+}
+
+TriangleMesh two_components() {
+  TriangleMesh a = test::uv_sphere(30, 60), b = test::torus(64, 24);
+  const uint32_t base = static_cast<uint32_t>(a.vertex_count());
+  for (size_t i = 0; i < b.vertex_count(); ++i) {
+    a.positions.push_back(b.positions[3 * i] + 3.0f);
+    a.positions.push_back(b.positions[3 * i + 1]);
+    a.positions.push_back(b.positions[3 * i + 2]);
+  }
+  for (uint32_t v : b.triangles) a.triangles.push_back(v + base);
+  return a;
+}
+
+// Encodes `input` with `levels` levels and checks every level: the input's
+// topology, a bounded error against the input falling over levels 0..2.
+void check_encoding(const TriangleMesh& input, uint32_t levels, double final_bound) {
+  const MeshInfo want = mesh_info(input);
+  REQUIRE(want.manifold);
+  EncodeOptions o;
+  o.levels = levels;
+  o.error = 1e-4;
+  auto r = encode_mesh(input, o);
+  REQUIRE(r.ok());
+  const Encoding& e = r.value().encoding;
+  REQUIRE(e.level_count == levels);
+  std::vector<double> err;
+  for (uint32_t l = 0; l <= levels; ++l) {
+    const TriangleMesh m{e.levels.positions[l], e.levels.triangles[l]};
+    const MeshInfo got = mesh_info(m);
+    INFO("level " << l);
+    CHECK(got.manifold);
+    CHECK(got.components == want.components);
+    CHECK(got.genus == want.genus);
+    CHECK(got.boundary_loops == want.boundary_loops);
+    err.push_back(mesh_distance(m, input, {50000, 1, 2}).mean() / e.diagonal);
+  }
+  INFO("errors: level 0 " << err[0] << ", 1 " << err[1] << ", 2 " << err[2] << ", last " << err.back());
+  CHECK(err[0] < 2e-2);
+  CHECK(err[1] < 0.7 * err[0]);
+  CHECK(err[2] < 0.7 * err[1]);
+  CHECK(err.back() < final_bound);
+  // The file decodes to the encoder's own levels bit for bit.
+  auto d = decode_bytes(e.bytes);
+  REQUIRE(d.ok());
+  CHECK(d.value().positions == e.levels.positions.back());
+}
+
+}  // namespace
+
+TEST_CASE("mesh input: a closed sphere keeps genus 0 and its error falls", "[mesh_input]") {
+  check_encoding(test::uv_sphere(40, 60), 3, 1e-3);
+}
+
+TEST_CASE("mesh input: a torus keeps genus 1", "[mesh_input]") { check_encoding(test::torus(96, 48), 3, 1e-3); }
+
+TEST_CASE("mesh input: an open tube keeps its two boundary loops", "[mesh_input]") {
+  const TriangleMesh tube = open_cylinder(60, 64);
+  REQUIRE(mesh_info(tube).boundary_loops == 2);
+  check_encoding(tube, 3, 1e-3);
+}
+
+TEST_CASE("mesh input: a sphere with two holes keeps both", "[mesh_input]") {
+  const TriangleMesh s = sphere_with_holes(40, 60);
+  REQUIRE(mesh_info(s).boundary_loops == 2);
+  check_encoding(s, 3, 1e-3);
+}
+
+TEST_CASE("mesh input: two components stay two", "[mesh_input]") {
+  const TriangleMesh m = two_components();
+  REQUIRE(mesh_info(m).components == 2);
+  check_encoding(m, 3, 1e-3);
+}
+
+TEST_CASE("mesh input: casting takes the facing sheet, then the nearest", "[mesh_input]") {
+  // A slab: its top at z = 0.1 facing up, its bottom at z = -0.05 facing
+  // down.  From z = 0 along +z the top is the facing sheet although the
+  // bottom is nearer; along -z the bottom faces the same way.
+  TriangleMesh slab;
+  slab.positions = {-1, -1, 0.1f, 1, -1, 0.1f, 1, 1, 0.1f, -1, 1, 0.1f, -1, -1, -0.05f, 1, -1, -0.05f, 1, 1, -0.05f, -1, 1, -0.05f};
+  slab.triangles = {0, 1, 2, 0, 2, 3, 4, 6, 5, 4, 7, 6};
+  const MeshSurface s(slab);
+  const double p[3] = {0.1, 0.2, 0}, up[3] = {0, 0, 1}, down[3] = {0, 0, -1};
+  const Sample a = s.sample(p, up, 1.0, false);
+  CHECK(a.source == SampleSource::triangle);
+  CHECK(a.distance == Approx(0.1).margin(1e-6));
+  const Sample b = s.sample(p, down, 1.0, false);
+  CHECK(b.distance == Approx(0.05).margin(1e-6));
+  // Out of reach: the closest point's offset along the normal (the
+  // bottom's edge, 0.05 below), clamped.
+  const double far[3] = {3, 0, 0};
+  const Sample c = s.sample(far, up, 0.01, false);
+  CHECK(c.source == SampleSource::nearest);
+  CHECK(c.clamped);
+  CHECK(c.distance == Approx(-0.01));
+  // A boundary sample goes to the boundary curve: from above the edge x = 1
+  // of the top, along -z, the curve is 0.3 below... and the surface too.
+  const double edge[3] = {1.0, 0.0, 0.4};
+  const Sample d = s.sample(edge, down, 1.0, true);
+  CHECK(d.distance == Approx(0.3).margin(1e-6));
+}
+
+TEST_CASE("mesh input: non-manifold meshes are refused by name", "[mesh_input]") {
+  TriangleMesh m;
+  m.positions = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, -1, 0, 0, 0, 1, 1, 1, 1};
+  SECTION("an edge in three triangles") {
+    m.triangles = {0, 1, 2, 1, 0, 3, 0, 1, 4};
+    auto r = prepare_mesh_input(m);
+    REQUIRE_FALSE(r.ok());
+    CHECK(r.status().message().find("edge 0-1 is shared by 3 triangles") != std::string::npos);
+  }
+  SECTION("a bow-tie vertex") {
+    m.triangles = {0, 1, 2, 0, 4, 5};
+    auto r = prepare_mesh_input(m);
+    REQUIRE_FALSE(r.ok());
+    CHECK(r.status().message().find("vertex 0 joins 2 triangles in more than one fan") != std::string::npos);
+  }
+  SECTION("an inconsistent orientation") {
+    m.triangles = {0, 1, 2, 0, 1, 3};
+    auto r = prepare_mesh_input(m);
+    REQUIRE_FALSE(r.ok());
+    CHECK(r.status().message().find("edge 0-1 is used twice in the same direction") != std::string::npos);
+  }
+  SECTION("the input's numbering survives dropped vertices and triangles") {
+    // Vertex 3 unused and a degenerate triangle first: the offence still
+    // names the input's vertices 4 and 5.
+    m.triangles = {0, 0, 1, 4, 5, 0, 5, 4, 1, 4, 5, 2};
+    auto r = prepare_mesh_input(m);
+    REQUIRE_FALSE(r.ok());
+    CHECK(r.status().message().find("edge 4-5 is shared by 3 triangles") != std::string::npos);
+    auto e = encode_mesh(m);
+    REQUIRE_FALSE(e.ok());
+    CHECK(e.status().code() == ErrorCode::invalid_argument);
+  }
+}
+
+TEST_CASE("mesh input: libcgal-demo meshes keep their topology", "[mesh_input][data]") {
+  // Closed, with holes, several components.
+  for (const char* name : {"data/meshes/elephant.off", "data/meshes/elephant-with-holes.off", "data/meshes/blobby_3cc.off"}) {
+    const auto path = test::scan_data(name);
+    if (!path) return;
+    auto mesh = read_mesh(*path);
+    REQUIRE(mesh.ok());
+    auto prepared = prepare_mesh_input(mesh.value());
+    REQUIRE(prepared.ok());
+    INFO(name);
+    check_encoding(prepared.value(), 3, 2e-3);
+  }
+}

@@ -1,0 +1,76 @@
+#include "encode_mesh.h"
+#include "progress.h"
+
+#include <cstdio>
+#include <filesystem>
+
+#include "dbss/encoder/encode_mesh.h"
+#include "dbss/io/file.h"
+#include "dbss/measure/mesh_distance.h"
+
+namespace dbss::tools {
+
+int run_encode_mesh(const std::string& input, const std::string& output, const TriangleMesh& mesh, EncodeOptions options,
+                    double read_s) {
+  Progress progress("dbss encode");
+  options.source_name = std::filesystem::path(input).filename().string();
+  options.encoder_version = DBSS_VERSION;
+  options.on_progress = [&](const std::string& what) { progress.show(what); };
+  auto encoded = encode_mesh(mesh, options);
+  progress.done();
+  if (!encoded.ok()) {
+    // Bad input is named plainly; anything else carries its code.
+    const Status& s = encoded.status();
+    std::fprintf(stderr, "dbss encode: %s: %s\n", input.c_str(),
+                 (s.code() == ErrorCode::invalid_argument ? s.message() : s.to_string()).c_str());
+    return encoded.status().code() == ErrorCode::internal ? 2 : 1;
+  }
+  const MeshEncoding& me = encoded.value();
+  const Encoding& e = me.encoding;
+  if (Status s = io::write_file_atomic(output, e.bytes); !s.ok()) {
+    std::fprintf(stderr, "dbss encode: %s\n", s.message().c_str());
+    return 1;
+  }
+  const MeshInfo& in = me.input_info;
+  std::printf("%s: mesh of %zu vertices, %zu triangles -> %s: %zu bytes\n", input.c_str(), me.input.vertex_count(),
+              me.input.triangle_count(), output.c_str(), e.bytes.size());
+  std::printf("input: %u component(s), genus %lld, %u boundary loop(s)", in.components, static_cast<long long>(in.genus),
+              in.boundary_loops);
+  if (me.cleanup.degenerate_triangles || me.cleanup.unused_vertices)
+    std::printf("; %zu triangles with a repeated corner and %zu unused vertices dropped", me.cleanup.degenerate_triangles,
+                me.cleanup.unused_vertices);
+  std::printf("\n%-22s %9s  %s\n", "stage", "ms", "notes");
+  std::printf("%-22s %9.1f  %s\n", "read mesh", read_s * 1e3, "");
+  std::printf("%-22s %9.1f  %s\n", "check", e.seconds.outliers * 1e3, "oriented manifold");
+  std::printf("%-22s %9.1f  %u -> %zu triangles, %zu boundary vertices on the input's boundary\n", "QEM control mesh",
+              e.seconds.control * 1e3, me.control_stats.faces_before, e.control.triangle_count(),
+              me.control_stats.boundary_vertices);
+  std::printf("%-22s %9.1f  %zu bytes, %d-bit positions\n", "Draco", e.seconds.draco * 1e3, e.contents.control_mesh.size(),
+              e.control_bits);
+  std::printf("%-22s %9.1f  %u level(s)%s\n", "cast displacements", e.seconds.levels * 1e3, e.level_count,
+              options.levels == kAutoLevels ? " (auto: up to the first level with more vertices than the input)" : "");
+  std::printf("%-22s %9.1f  %zu bytes\n", "container", e.seconds.serialize * 1e3, e.bytes.size());
+  // Per level: topology against the input's, and the two-sided mean
+  // distance to the input surface relative to the diagonal.
+  std::printf("\n%-5s %9s %10s %10s %10s %8s %11s %11s\n", "level", "vertices", "triangles", "prefix", "components",
+              "genus", "boundaries", "to input");
+  bool kept = true;
+  MeshDistanceOptions mo;
+  mo.samples = 100000;
+  mo.threads = std::max(1u, options.threads);
+  for (uint32_t l = 0; l <= e.level_count; ++l) {
+    const TriangleMesh m{e.levels.positions[l], e.levels.triangles[l]};
+    const MeshInfo info = mesh_info(m);
+    kept = kept && info.components == in.components && info.genus == in.genus && info.boundary_loops == in.boundary_loops;
+    const double d = mesh_distance(m, me.input, mo).mean() / e.diagonal;
+    std::printf("%-5u %9zu %10zu %10llu %10u %8lld %11u %11.3e\n", l, m.vertex_count(), m.triangle_count(),
+                static_cast<unsigned long long>(prefix_bytes(e, l)), info.components, static_cast<long long>(info.genus),
+                info.boundary_loops, d);
+  }
+  if (!kept) {
+    std::fprintf(stderr, "dbss encode: %s: warning (topology): a level's topology differs from the input's\n", input.c_str());
+  }
+  return 0;
+}
+
+}  // namespace dbss::tools
