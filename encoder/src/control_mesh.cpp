@@ -36,11 +36,10 @@ constexpr double kSheetMiss = 0.12;
 constexpr double kMaxLeakBridged = 0.02;
 // Rings of triangles added round a closed shell's unsupported patches when
 // they are cut out to look for tube ends the carving capped.  On tori of
-// genus 1-3 with 10% and 15% holes from six directions (scan_bench
-// --hole-sweep, closed, 4,000 and 9,000 points): without the rejoining 26
-// of 72 came out with a handle lost; with 2 rings 19 (but two tubes were
-// joined that should not have been, one handle too many), with 4 rings 21
-// and none too many.
+// genus 1-3 with 10% and 15% holes from six directions (closed, 4,000 and
+// 9,000 points): without the rejoining 26 of 72 came out with a handle
+// lost; with 2 rings 19 (but two tubes were joined that should not have
+// been, one handle too many), with 4 rings 21 and none too many.
 constexpr int kCapGrow = 4;
 // Boundary loops shorter than this many cells are closed even in open mode.
 constexpr double kPinhole = 8;

@@ -20,8 +20,10 @@ namespace dbss {
 // along the loops' axes, zipped to each other and to the loops.  Two loops
 // face each other when each one's plane faces the other across the gap (as
 // the two ends of a cut tube do; not as two holes on the two sides of a
-// plate do), their sizes are within a factor of two, and the gap is under
-// five times the larger loop's radius.  A tube that crosses the mesh all
+// plate do), the surface round each runs along its axis as a tube's wall
+// does (not across it, as round a hole in a wall), their sizes are within
+// a factor of two, and the gap is under five times the larger loop's
+// radius.  A tube that crosses the mesh all
 // the way round (through a part in its way) is not built.  Bridged loops
 // are removed from `loops`; the new vertices are appended to `added`.
 // Returns the number of tubes built.
