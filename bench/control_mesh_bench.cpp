@@ -10,7 +10,8 @@
 // (all threads summed, so a run on a loaded machine still reads as one
 // core's work) next to the wall-clock stage times.
 //
-// usage: control_mesh_bench [--no-shapes] [POINT_FILE...]
+// usage: control_mesh_bench [--no-shapes] [--no-peers] [POINT_FILE...]
+// (--no-peers: neither OpenMesh nor CGAL, for profiling our stages alone)
 #include <chrono>
 #include <ctime>
 #include <cstdio>
@@ -36,6 +37,7 @@
 
 namespace {
 using Clock = std::chrono::steady_clock;
+bool g_peers = true;
 
 double cpu_seconds() {
   timespec t{};
@@ -108,15 +110,16 @@ void run(const std::string& name, const dbss::PointCloud& pc, int want_component
   const auto& s = r.value();
   const auto info = dbss::mesh_info(s.control);
   size_t om_faces = 0;
-  const double om = openmesh_decimate_ms(s.wrapped, static_cast<uint32_t>(s.control.triangle_count()), om_faces);
+  const double om = !g_peers ? 0.0 : openmesh_decimate_ms(s.wrapped, static_cast<uint32_t>(s.control.triangle_count()), om_faces);
   const bool known = want_components >= 0;
   const bool right = !known || (int(info.components) == want_components && info.genus == want_genus);
-  std::printf("%-16s %7zu %5d %6zu %6zu %2u/%-2lld %-5s | %6.1f %6.1f %6.1f %6.1f %6.1f %6.1f | %7.1f | %7.1f (%zu) %6.2fx\n",
+  std::printf("%-16s %7zu %5d %6zu %6zu %2u/%-2lld %-5s | %6.1f %6.1f %6.1f %6.1f %3d %6.1f %6.1f %6.1f | %7.1f | %7.1f (%zu) %6.2fx\n",
               name.c_str(), pc.size(), s.carving.grid, s.shell.triangle_count(), s.control.triangle_count(), info.components,
               static_cast<long long>(info.genus), known ? (right ? "ok" : "WRONG") : "?", s.seconds.grid * 1e3, s.seconds.carve * 1e3, s.seconds.triangulate * 1e3,
-              s.seconds.shrink_wrap * 1e3, s.seconds.simplify * 1e3, s.seconds.project * 1e3, total, om, om_faces,
+              s.seconds.shrink_wrap * 1e3, s.wrap_stats.iterations, s.seconds.simplify * 1e3, s.seconds.shape * 1e3,
+              s.seconds.project * 1e3, total, om, om_faces,
               om > 0 ? om / (s.seconds.simplify * 1e3) : 0.0);
-  if (peer) {
+  if (peer && g_peers) {
     size_t af_faces = 0;
     const double af = advancing_front_ms(pc, af_faces);
     if (af > 0)
@@ -141,15 +144,16 @@ int main(int argc, char** argv) {
   bool shapes = true;
   for (int i = 1; i < argc; ++i) {
     if (std::string(argv[i]) == "--no-shapes") shapes = false;
+    else if (std::string(argv[i]) == "--no-peers") g_peers = false;
     else files.push_back(argv[i]);
   }
-  if (files.empty()) {
+  if (files.empty() && shapes) {
     for (const char* f : {"test-data/data/meshes/bunny00.off", "test-data/data/points_3/kitten.xyz",
                           "test-data/data/meshes/fandisk.off"})
       if (std::filesystem::exists(f)) files.push_back(f);
   }
-  std::printf("%-16s %7s %5s %6s %6s %5s %-5s | %6s %6s %6s %6s %6s %6s | %7s | %s\n", "input", "points", "grid", "shellF",
-              "ctrlF", "c/g", "want", "grid", "carve", "tri", "wrap", "QEM", "proj", "total", "OpenMesh QEM ms (faces) / ours");
+  std::printf("%-16s %7s %5s %6s %6s %5s %-5s | %6s %6s %6s %6s %3s %6s %6s %6s | %7s | %s\n", "input", "points", "grid",
+              "shellF", "ctrlF", "c/g", "want", "grid", "carve", "tri", "wrap", "it", "QEM", "shape", "proj", "total", "OpenMesh QEM ms (faces) / ours");
   for (const auto& f : files) {
     auto pc = dbss::read_points(f);
     if (!pc.ok()) {
