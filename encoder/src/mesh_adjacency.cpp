@@ -43,18 +43,28 @@ Adjacency vertex_triangles(const TriangleMesh& m) {
 
 
 Rim rim_neighbours(const TriangleMesh& m) {
-  std::vector<std::pair<uint32_t, uint32_t>> half;
-  half.reserve(m.triangles.size());
-  for (size_t f = 0; f < m.triangle_count(); ++f)
-    for (int k = 0; k < 3; ++k) half.push_back({m.triangles[3 * f + k], m.triangles[3 * f + (k + 1) % 3]});
-  std::sort(half.begin(), half.end());
+  // A half-edge a->b is interior when a triangle at b runs b->a: looked up
+  // in b's fan (a few triangles) rather than by sorting every half-edge.
+  const Adjacency vt = vertex_triangles(m);
+  const auto has_twin = [&](uint32_t a, uint32_t b) {
+    for (uint32_t i = vt.offset[b]; i < vt.offset[b + 1]; ++i) {
+      const uint32_t* t = &m.triangles[3 * size_t{vt.index[i]}];
+      for (int k = 0; k < 3; ++k)
+        if (t[k] == b && t[(k + 1) % 3] == a) return true;
+    }
+    return false;
+  };
   Rim rim(m.vertex_count(), {kNotOnRim, kNotOnRim});
   std::vector<uint32_t> ins(m.vertex_count(), 0), outs(m.vertex_count(), 0);
-  for (const auto& [a, b] : half) {
-    if (std::binary_search(half.begin(), half.end(), std::pair{b, a})) continue;  // interior edge
-    rim[a][1] = b, rim[b][0] = a;
-    ++outs[a], ++ins[b];
-  }
+  for (size_t f = 0; f < m.triangle_count(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      const uint32_t a = m.triangles[3 * f + k], b = m.triangles[3 * f + (k + 1) % 3];
+      if (has_twin(a, b)) continue;  // interior edge
+      // (Where several rim edges meet at a vertex the order of these
+      // writes does not matter: the vertex is pinned below.)
+      rim[a][1] = b, rim[b][0] = a;
+      ++outs[a], ++ins[b];
+    }
   for (size_t v = 0; v < rim.size(); ++v)
     if ((ins[v] || outs[v]) && (ins[v] != 1 || outs[v] != 1)) rim[v] = {static_cast<uint32_t>(v), static_cast<uint32_t>(v)};
   return rim;
