@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <chrono>
-#include <ctime>
 #include <cmath>
 #include <cstdio>
 #include <optional>
@@ -41,8 +40,8 @@ constexpr double kPinhole = 8;
 // needs around a tenth, a half sphere a third.
 constexpr double kMaxBridged = 0.2;
 
-struct Clock { using time_point = double; static double now() { timespec t{}; clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t); return t.tv_sec + 1e-9 * t.tv_nsec; } };
-double since(double t) { return Clock::now() - t; }
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
 Status check_stage(const TriangleMesh& m, const MeshInfo& want, const char* stage) {
   const MeshInfo got = mesh_info(m);
