@@ -175,9 +175,19 @@ size_t fill_critical(CellGrid& g) {
     g.state[g.index(i, j, k)] = CellGrid::kFilled;
     ++filled;
   };
+  const size_t sy = size_t(g.n[0]), sz = size_t(g.n[0]) * g.n[1];
   for (int k = 0; k + 1 < g.n[2]; ++k)
     for (int j = 0; j + 1 < g.n[1]; ++j)
       for (int i = 0; i + 1 < g.n[0]; ++i) {
+        // Most blocks are all air or all solid, where neither test below
+        // can fire: skipped after eight reads by stride.
+        const size_t id = g.index(i, j, k);
+        const uint8_t* st = g.state.data();
+        const int air_cells = (st[id] == CellGrid::kAir) + (st[id + 1] == CellGrid::kAir) + (st[id + sy] == CellGrid::kAir) +
+                              (st[id + sy + 1] == CellGrid::kAir) + (st[id + sz] == CellGrid::kAir) +
+                              (st[id + sz + 1] == CellGrid::kAir) + (st[id + sz + sy] == CellGrid::kAir) +
+                              (st[id + sz + sy + 1] == CellGrid::kAir);
+        if (air_cells == 0 || air_cells == 8) continue;
         // The three 2x2 squares through cell (i,j,k) in the xy, xz and yz planes.
         const int sq[3][4][3] = {{{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}},
                                  {{0, 0, 0}, {1, 0, 0}, {1, 0, 1}, {0, 0, 1}},
