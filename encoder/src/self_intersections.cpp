@@ -53,8 +53,10 @@ std::vector<std::pair<uint32_t, uint32_t>> crossings(const TriangleMesh& m, cons
   const size_t nf = m.triangle_count();
   std::vector<std::pair<uint32_t, uint32_t>> hits;
   if (nf == 0) return hits;
-  // Triangle bounds, and cubic bins about twice the mean bound's extent, so
-  // a triangle falls into a handful of bins (counted, then filled: CSR).
+  // Triangle bounds, and cubic bins three times the mean bound's extent, so
+  // a triangle falls into one to a few bins (counted, then filled: CSR).
+  // (On the bunny's 73k-triangle shell: 1x took 2.3 times as long as 3x,
+  // 2x 1.3 times, 4x and 6x about the same.)
   std::vector<float> box(6 * nf);
   V3 lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
   double extent = 0;
@@ -68,8 +70,9 @@ std::vector<std::pair<uint32_t, uint32_t>> crossings(const TriangleMesh& m, cons
       extent += b[3 + a] - b[a];
     }
   }
-  double cell = std::max(2 * extent / (3.0 * nf), 1e-30);
-  // At most about 4 bins per triangle overall, however the mesh is spread.
+  double cell = std::max(3 * extent / (3.0 * nf), 1e-30);
+  // At most 16 bins per triangle overall, however the mesh is spread (a
+  // surface fills a thin layer of the box: most bins stay empty).
   int n[3];
   for (;;) {
     for (int a = 0; a < 3; ++a) n[a] = std::max(1, static_cast<int>((hi[a] - lo[a]) / cell) + 1);
