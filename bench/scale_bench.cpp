@@ -6,7 +6,9 @@
 // (getrusage's ru_maxrss of that child alone) covers sampling and encoding,
 // and one size's heap does not inflate the next one's figure.
 //
-// usage: scale_bench [--levels L] [--threads T] [N...]   (default N: 100000 1000000 10000000)
+// usage: scale_bench [--levels L] [--threads T] [--keep-outliers] [N...]
+//        (default N: 100000 1000000 10000000; --keep-outliers: the encoder's
+//        outlier stage off, as for data known to be clean)
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -64,7 +66,7 @@ struct Row {
 };
 
 // The child: sample, encode, report through the pipe.
-[[noreturn]] void child(size_t n, uint32_t levels, unsigned threads, int fd) {
+[[noreturn]] void child(size_t n, uint32_t levels, unsigned threads, bool outliers, int fd) {
   Row r;
   const auto t0 = Clock::now();
   dbss::PointCloud pc;
@@ -76,6 +78,7 @@ struct Row {
   dbss::EncodeOptions o;
   o.levels = levels;
   o.threads = threads;
+  o.outliers.enabled = outliers;
   const auto t1 = Clock::now();
   const double c1 = cpu_seconds();
   auto e = dbss::encode_points(pc, o);
@@ -106,17 +109,20 @@ struct Row {
 int main(int argc, char** argv) {
   uint32_t levels = 3;
   unsigned threads = 2;
+  bool outliers = true;
   std::vector<size_t> sizes;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--levels" && i + 1 < argc) levels = static_cast<uint32_t>(std::atoi(argv[++i]));
     else if (a == "--threads" && i + 1 < argc) threads = static_cast<unsigned>(std::atoi(argv[++i]));
+    else if (a == "--keep-outliers") outliers = false;
     else if (!a.empty() && a[0] != '-') sizes.push_back(std::strtoull(a.c_str(), nullptr, 10));
-    else return std::fprintf(stderr, "usage: scale_bench [--levels L] [--threads T] [N...]\n"), 2;
+    else return std::fprintf(stderr, "usage: scale_bench [--levels L] [--threads T] [--keep-outliers] [N...]\n"), 2;
   }
   if (sizes.empty()) sizes = {100000, 1000000, 10000000};
-  std::printf("bumpy torus sampled with seed 19, level %u, %u threads; times in s, memory in MB (peak RSS of the child)\n",
-              levels, threads);
+  std::printf("bumpy torus sampled with seed 19, level %u, %u threads, outlier stage %s; times in s (encode: wall and CPU;\n"
+              "stages: wall), memory in MB (peak RSS of the child)\n",
+              levels, threads, outliers ? "on" : "off");
   std::printf("%9s | %6s | %7s %7s | %6s %6s %6s %6s %6s %6s | %4s %7s %6s | %8s %7s | %s\n", "points", "sample", "encode",
               "cpu", "outlr", "ctrl", "grid", "wrap", "QEM", "levels", "cgrd", "shellF", "ctrlF", "bytes", "peakMB",
               "x time vs 10x fewer");
@@ -129,7 +135,7 @@ int main(int argc, char** argv) {
     if (pid < 0) return std::perror("fork"), 1;
     if (pid == 0) {
       close(fds[0]);
-      child(n, levels, threads, fds[1]);
+      child(n, levels, threads, outliers, fds[1]);
     }
     close(fds[1]);
     Row r;
