@@ -59,7 +59,7 @@ dbss::TriangleMesh bumpy_torus() {
 
 struct Row {
   double sample = 0, encode = 0, encode_cpu = 0, control = 0, levels = 0, outliers = 0;
-  double grid = 0, wrap = 0, simplify = 0;
+  double grid = 0, wrap = 0, simplify = 0, check = 0, other = 0;
   int carving_grid = 0;
   size_t shell = 0, control_faces = 0, bytes = 0;
   int ok = 0;
@@ -90,9 +90,13 @@ struct Row {
     r.outliers = x.seconds.outliers;
     r.control = x.seconds.control;
     r.levels = x.seconds.levels;
-    r.grid = x.stages.seconds.grid;
-    r.wrap = x.stages.seconds.shrink_wrap;
-    r.simplify = x.stages.seconds.simplify;
+    r.grid = x.stages.cpu_seconds.grid;
+    r.wrap = x.stages.cpu_seconds.shrink_wrap;
+    r.simplify = x.stages.cpu_seconds.simplify;
+    r.check = x.seconds.check;
+    // The input's point index and everything not timed by a stage.
+    r.other = r.encode - (x.seconds.outliers + x.seconds.control + x.seconds.draco + x.seconds.levels + x.seconds.check +
+                          x.seconds.serialize);
     r.carving_grid = x.stages.carving.grid;
     r.shell = x.stages.shell.triangle_count();
     r.control_faces = x.control.triangle_count();
@@ -120,12 +124,12 @@ int main(int argc, char** argv) {
     else return std::fprintf(stderr, "usage: scale_bench [--levels L] [--threads T] [--keep-outliers] [N...]\n"), 2;
   }
   if (sizes.empty()) sizes = {100000, 1000000, 10000000};
-  std::printf("bumpy torus sampled with seed 19, level %u, %u threads, outlier stage %s; times in s (encode: wall and CPU;\n"
-              "stages: wall), memory in MB (peak RSS of the child)\n",
+  std::printf("bumpy torus sampled with seed 19, level %u, %u threads, outlier stage %s; times in s (encode: wall and CPU of all threads;\n"
+              "outlr ctrl levels check other: wall; grid wrap QEM: CPU), memory in MB (peak RSS of the child)\n",
               levels, threads, outliers ? "on" : "off");
-  std::printf("%9s | %6s | %7s %7s | %6s %6s %6s %6s %6s %6s | %4s %7s %6s | %8s %7s | %s\n", "points", "sample", "encode",
-              "cpu", "outlr", "ctrl", "grid", "wrap", "QEM", "levels", "cgrd", "shellF", "ctrlF", "bytes", "peakMB",
-              "x time vs 10x fewer");
+  std::printf("%9s | %6s | %7s %7s | %6s %6s %6s %6s %6s %6s %6s %6s | %4s %7s %6s | %8s %7s | %s\n", "points", "sample",
+              "encode", "cpu", "outlr", "ctrl", "grid", "wrap", "QEM", "levels", "check", "other", "cgrd", "shellF", "ctrlF",
+              "bytes", "peakMB", "x time vs 10x fewer");
   double previous = 0;
   size_t previous_n = 0;
   for (size_t n : sizes) {
@@ -150,8 +154,8 @@ int main(int argc, char** argv) {
     }
     char ratio[32] = "";
     if (previous > 0 && n == 10 * previous_n) std::snprintf(ratio, sizeof ratio, "%.1fx", r.encode / previous);
-    std::printf("%9zu | %6.1f | %7.1f %7.1f | %6.1f %6.1f %6.1f %6.1f %6.1f %6.1f | %4d %7zu %6zu | %8zu %7.0f | %s\n", n,
-                r.sample, r.encode, r.encode_cpu, r.outliers, r.control, r.grid, r.wrap, r.simplify, r.levels,
+    std::printf("%9zu | %6.1f | %7.1f %7.1f | %6.1f %6.1f %6.1f %6.1f %6.1f %6.1f %6.1f %6.1f | %4d %7zu %6zu | %8zu %7.0f | %s\n",
+                n, r.sample, r.encode, r.encode_cpu, r.outliers, r.control, r.grid, r.wrap, r.simplify, r.levels, r.check, r.other,
                 r.carving_grid, r.shell, r.control_faces, r.bytes, static_cast<double>(use.ru_maxrss) / 1024.0, ratio);
     std::fflush(stdout);
     previous = r.encode;
