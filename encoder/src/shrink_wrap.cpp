@@ -108,7 +108,9 @@ ShrinkWrapStats shrink_wrap(TriangleMesh& m, const PointIndex& index, const Shri
   }
   // `safe` is the state the loop left (its last pass always checks).
   stats.untangled = untangle_folds(m);
-  stats.undone += undo_self_intersections(m, safe);
+  // With no fold met nothing moved since the loop's last check, which left
+  // no crossings: the search for them is skipped.
+  if (stats.untangled > 0) stats.undone += undo_self_intersections(m, safe);
   double sum = 0, worst = 0;
   for (size_t v = 0; v < n; ++v) {
     const float* p = &m.positions[3 * v];
