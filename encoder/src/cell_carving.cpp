@@ -52,32 +52,57 @@ CellGrid make_grid(const PointCloud& pc, int grid) {
 }
 
 // Breadth-first from every border cell through face neighbours whose state
-// `passable` accepts; returns which cells were reached.
+// `passable` accepts; returns which cells were reached.  The border cells
+// are expanded as they are seeded, with their coordinates at hand; only
+// inner cells enter the queue, and an inner cell has all six neighbours, so
+// they are found by adding strides, without the three divisions and six
+// range checks per cell that finding its coordinates would cost.  (What is
+// reached does not depend on the order cells are visited.)
 template <class Passable>
 std::vector<uint8_t> flood_from_border(const CellGrid& g, Passable passable) {
   std::vector<uint8_t> seen(g.state.size(), 0);
   std::vector<uint32_t> queue;
-  auto visit = [&](int i, int j, int k) {
+  const int nx = g.n[0], ny = g.n[1], nz = g.n[2];
+  const auto border = [&](int i, int j, int k) { return i == 0 || j == 0 || k == 0 || i == nx - 1 || j == ny - 1 || k == nz - 1; };
+  // An inner cell next to the border: seen (and queued) if passable.
+  auto visit_inner = [&](int i, int j, int k) {
+    if (i < 0 || j < 0 || k < 0 || i >= nx || j >= ny || k >= nz || border(i, j, k)) return;
     const size_t id = g.index(i, j, k);
     if (!seen[id] && passable(g.state[id])) {
       seen[id] = 1;
       queue.push_back(static_cast<uint32_t>(id));
     }
   };
-  for (int k = 0; k < g.n[2]; ++k)
-    for (int j = 0; j < g.n[1]; ++j)
-      for (int i = 0; i < g.n[0]; ++i)
-        if (i == 0 || j == 0 || k == 0 || i == g.n[0] - 1 || j == g.n[1] - 1 || k == g.n[2] - 1) visit(i, j, k);
+  for (int k = 0; k < nz; ++k)
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i) {
+        if (!border(i, j, k)) continue;
+        const size_t id = g.index(i, j, k);
+        if (!passable(g.state[id])) continue;
+        seen[id] = 1;
+      }
+  // Border cells reach each other only through the border, which is seeded
+  // whole; they reach inner cells through these face neighbours.
+  for (int k = 0; k < nz; ++k)
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i) {
+        if (!border(i, j, k) || !seen[g.index(i, j, k)]) continue;
+        visit_inner(i - 1, j, k), visit_inner(i + 1, j, k), visit_inner(i, j - 1, k);
+        visit_inner(i, j + 1, k), visit_inner(i, j, k - 1), visit_inner(i, j, k + 1);
+      }
+  const size_t sx = 1, sy = size_t(nx), sz = size_t(nx) * ny;
+  const auto visit = [&](size_t id) {
+    if (!seen[id] && passable(g.state[id])) {
+      seen[id] = 1;
+      queue.push_back(static_cast<uint32_t>(id));
+    }
+  };
   for (size_t q = 0; q < queue.size(); ++q) {
-    const uint32_t id = queue[q];
-    const int i = static_cast<int>(id % g.n[0]), j = static_cast<int>((id / g.n[0]) % g.n[1]),
-              k = static_cast<int>(id / (size_t(g.n[0]) * g.n[1]));
-    if (i > 0) visit(i - 1, j, k);
-    if (i + 1 < g.n[0]) visit(i + 1, j, k);
-    if (j > 0) visit(i, j - 1, k);
-    if (j + 1 < g.n[1]) visit(i, j + 1, k);
-    if (k > 0) visit(i, j, k - 1);
-    if (k + 1 < g.n[2]) visit(i, j, k + 1);
+    const size_t id = queue[q];
+    // Neighbours on the border are seen already (if passable) or stop the
+    // flood (if not): visiting them changes nothing, so no check is needed
+    // for which of them are on it.
+    visit(id - sx), visit(id + sx), visit(id - sy), visit(id + sy), visit(id - sz), visit(id + sz);
   }
   return seen;
 }
@@ -150,9 +175,19 @@ size_t fill_critical(CellGrid& g) {
     g.state[g.index(i, j, k)] = CellGrid::kFilled;
     ++filled;
   };
+  const size_t sy = size_t(g.n[0]), sz = size_t(g.n[0]) * g.n[1];
   for (int k = 0; k + 1 < g.n[2]; ++k)
     for (int j = 0; j + 1 < g.n[1]; ++j)
       for (int i = 0; i + 1 < g.n[0]; ++i) {
+        // Most blocks are all air or all solid, where neither test below
+        // can fire: skipped after eight reads by stride.
+        const size_t id = g.index(i, j, k);
+        const uint8_t* st = g.state.data();
+        const int air_cells = (st[id] == CellGrid::kAir) + (st[id + 1] == CellGrid::kAir) + (st[id + sy] == CellGrid::kAir) +
+                              (st[id + sy + 1] == CellGrid::kAir) + (st[id + sz] == CellGrid::kAir) +
+                              (st[id + sz + 1] == CellGrid::kAir) + (st[id + sz + sy] == CellGrid::kAir) +
+                              (st[id + sz + sy + 1] == CellGrid::kAir);
+        if (air_cells == 0 || air_cells == 8) continue;
         // The three 2x2 squares through cell (i,j,k) in the xy, xz and yz planes.
         const int sq[3][4][3] = {{{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}},
                                  {{0, 0, 0}, {1, 0, 0}, {1, 0, 1}, {0, 0, 1}},
@@ -213,9 +248,15 @@ CarvingShape carving_shape(const CellGrid& g) {
   // count each vertex, edge, face and cube of the cell complex once.  A
   // lattice point (or edge, face) belongs to the union if any solid cell
   // contains it.
-  auto solid = [&](int i, int j, int k) {
-    return i >= 0 && j >= 0 && k >= 0 && i < g.n[0] && j < g.n[1] && k < g.n[2] && g.state[g.index(i, j, k)] != CellGrid::kAir;
-  };
+  // The solid cells with one layer of air around them, so the 8 cells
+  // around every lattice point are read without range checks.
+  const int px = g.n[0] + 2, py = g.n[1] + 2, pz = g.n[2] + 2;
+  std::vector<uint8_t> padded(size_t(px) * py * pz, 0);
+  for (int k = 0; k < g.n[2]; ++k)
+    for (int j = 0; j < g.n[1]; ++j)
+      for (int i = 0; i < g.n[0]; ++i)
+        padded[(size_t(k + 1) * py + j + 1) * px + i + 1] = g.state[g.index(i, j, k)] != CellGrid::kAir;
+  auto solid = [&](int i, int j, int k) { return padded[(size_t(k + 1) * py + j + 1) * px + i + 1] != 0; };
   int64_t v = 0, e = 0, f = 0, c = 0;
   for (int k = 0; k <= g.n[2]; ++k)
     for (int j = 0; j <= g.n[1]; ++j)

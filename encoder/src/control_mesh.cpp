@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <ctime>
 #include <numbers>
 #include <optional>
 #include <string>
@@ -48,8 +49,22 @@ constexpr double kPinhole = 8;
 // needs around a tenth, a half sphere a third.
 constexpr double kMaxBridged = 0.2;
 
-using Clock = std::chrono::steady_clock;
-double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+// A stage's start on the wall clock and in CPU time of the process (every
+// thread summed: the grid search carves two grids at once).
+struct Stamp {
+  std::chrono::steady_clock::time_point wall;
+  double cpu;
+};
+double process_cpu() {
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+struct Clock {
+  static Stamp now() { return {std::chrono::steady_clock::now(), process_cpu()}; }
+};
+double since(const Stamp& t) { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t.wall).count(); }
+double cpu_since(const Stamp& t) { return process_cpu() - t.cpu; }
 
 Status check_stage(const TriangleMesh& m, const MeshInfo& want, const char* stage) {
   const MeshInfo got = mesh_info(m);
@@ -283,7 +298,7 @@ Result<ControlMeshStages> build_control_mesh(const PointIndex& index, const Cont
   stage("choosing the grid");
   auto t = Clock::now();
   if (o.grid > 0) {
-    s.seconds.grid = since(t);
+    s.seconds.grid = since(t), s.cpu_seconds.grid = cpu_since(t);
     stage("carving cells");
     t = Clock::now();
     s.cells = carve(points, o.grid, &s.carving);
@@ -293,10 +308,10 @@ Result<ControlMeshStages> build_control_mesh(const PointIndex& index, const Cont
     s.cells = std::move(chosen.cells);
     s.carving = chosen.stats;
     leaking_grid = chosen.leaking_grid;
-    s.seconds.grid = since(t);
+    s.seconds.grid = since(t), s.cpu_seconds.grid = cpu_since(t);
     t = Clock::now();
   }
-  s.seconds.carve = since(t);
+  s.seconds.carve = since(t), s.cpu_seconds.carve = cpu_since(t);
 
   stage("triangulating");
   t = Clock::now();
@@ -304,7 +319,7 @@ Result<ControlMeshStages> build_control_mesh(const PointIndex& index, const Cont
   if (!shell.ok()) return shell.status();
   s.shell = std::move(shell).value();
   s.shell_info = mesh_info(s.shell);
-  s.seconds.triangulate = since(t);
+  s.seconds.triangulate = since(t), s.cpu_seconds.triangulate = cpu_since(t);
 
   // Open or closed: a carving that encloses next to no volume is a slab
   // around a sheet of points (an open scan, or a closed one whose carving
@@ -316,7 +331,7 @@ Result<ControlMeshStages> build_control_mesh(const PointIndex& index, const Cont
     stage("cutting the open sheet");
     t = Clock::now();
     sheet = build_sheet(s, index, o, inside_share, leaking_grid);
-    s.seconds.shrink_wrap = since(t);
+    s.seconds.shrink_wrap = since(t), s.cpu_seconds.shrink_wrap = cpu_since(t);
     if (o.surface == SurfaceMode::open && !sheet)
       return Status(ErrorCode::invalid_argument, "--surface open: " + s.surface_reason.substr(s.surface_reason.find(':') + 2));
   } else {
@@ -328,7 +343,8 @@ Result<ControlMeshStages> build_control_mesh(const PointIndex& index, const Cont
     t = Clock::now();
     s.wrapped = s.shell;
     s.wrap_stats = shrink_wrap(s.wrapped, index, o.shrink_wrap);
-    s.seconds.shrink_wrap = since(t);
+    // (+=: a sheet tried and given up on above counts in this stage too.)
+    s.seconds.shrink_wrap += since(t), s.cpu_seconds.shrink_wrap += cpu_since(t);
     if (Status st = check_stage(s.wrapped, s.shell_info, "shrink-wrapping"); !st.ok()) return st;
   }
   const bool rejoined = !sheet && o.surface != SurfaceMode::open && rejoin_cut_tubes(s, index) > 0;
@@ -353,7 +369,7 @@ Result<ControlMeshStages> build_control_mesh(const PointIndex& index, const Cont
   auto simplified = simplify_mesh(s.wrapped, target, &s.simplify_stats);
   if (!simplified.ok()) return simplified.status();
   s.simplified = std::move(simplified).value();
-  s.seconds.simplify = since(t);
+  s.seconds.simplify = since(t), s.cpu_seconds.simplify = cpu_since(t);
   if (Status st = check_stage(s.simplified, wrapped_info, "simplification"); !st.ok()) return st;
 
   stage("shaping");
@@ -363,7 +379,7 @@ Result<ControlMeshStages> build_control_mesh(const PointIndex& index, const Cont
   // the points.
   s.control = s.simplified;
   s.shape_stats = improve_shape(s.control, &index, o.shape);
-  s.seconds.shape = since(t);
+  s.seconds.shape = since(t), s.cpu_seconds.shape = cpu_since(t);
   if (Status st = check_stage(s.control, wrapped_info, "shaping"); !st.ok()) return st;
 
   stage("projecting");
@@ -397,7 +413,7 @@ Result<ControlMeshStages> build_control_mesh(const PointIndex& index, const Cont
   // Projection checks folds only locally; on thin parts a vertex can still
   // pass through the opposite side.
   s.projection_skipped += undo_self_intersections(s.control, before);
-  s.seconds.project = since(t);
+  s.seconds.project = since(t), s.cpu_seconds.project = cpu_since(t);
   if (o.shape.enabled) {
     // Jumps onto the points move vertices by up to a point spacing
     // sideways, a lot next to a short edge (a sphere's slivers went from
@@ -411,7 +427,7 @@ Result<ControlMeshStages> build_control_mesh(const PointIndex& index, const Cont
     s.shape_stats.moves += again.moves;
     s.shape_stats.rounds_undone += again.rounds_undone;
     s.shape_stats.after = again.after;
-    s.seconds.shape += since(t);
+    s.seconds.shape += since(t), s.cpu_seconds.shape += cpu_since(t);
     if (Status st = check_stage(s.control, wrapped_info, "shaping"); !st.ok()) return st;
   }
   return s;

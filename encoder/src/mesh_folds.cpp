@@ -59,9 +59,12 @@ bool folded_around(const TriangleMesh& m, const Adjacency& vt, uint32_t v, doubl
   return false;
 }
 
-std::vector<uint32_t> foldover_vertices(const TriangleMesh& m, double max_angle_degrees) {
+namespace {
+// The original definition, by a map of directed edges: kept for meshes
+// where an edge has more than two triangles, whose answer depends on the
+// map's overwrites.
+std::vector<uint32_t> foldover_vertices_mapped(const TriangleMesh& m, double limit) {
   std::map<std::pair<uint32_t, uint32_t>, size_t> first;
-  const double limit = std::cos(max_angle_degrees * std::numbers::pi / 180);
   std::vector<uint32_t> out;
   for (size_t f = 0; f < m.triangle_count(); ++f)
     for (int k = 0; k < 3; ++k) {
@@ -75,6 +78,44 @@ std::vector<uint32_t> foldover_vertices(const TriangleMesh& m, double max_angle_
       const double l = std::sqrt(dot(n1, n1) * dot(n2, n2));
       if (l > 0 && dot(n1, n2) / l < limit) out.insert(out.end(), {a, b});
     }
+  return out;
+}
+}  // namespace
+
+std::vector<uint32_t> foldover_vertices(const TriangleMesh& m, double max_angle_degrees) {
+  const double limit = std::cos(max_angle_degrees * std::numbers::pi / 180);
+  // Half-edges sorted by their undirected edge: the two sides of an edge
+  // end up next to each other.  The pairs are reported in the order the
+  // map version met their second side (corner order), as it did.
+  struct Half {
+    uint64_t edge;
+    uint32_t corner;  // 3 * triangle + k
+  };
+  std::vector<Half> half(m.triangles.size());
+  for (size_t c = 0; c < m.triangles.size(); ++c) {
+    const uint32_t a = m.triangles[c], b = m.triangles[c - c % 3 + (c + 1) % 3];
+    half[c] = {uint64_t{std::min(a, b)} << 32 | std::max(a, b), static_cast<uint32_t>(c)};
+  }
+  std::sort(half.begin(), half.end(), [](const Half& x, const Half& y) { return x.edge != y.edge ? x.edge < y.edge : x.corner < y.corner; });
+  std::vector<uint32_t> later;  // corners of the second sides of folded edges
+  for (size_t i = 0; i < half.size();) {
+    size_t j = i + 1;
+    while (j < half.size() && half[j].edge == half[i].edge) ++j;
+    if (j - i > 2) return foldover_vertices_mapped(m, limit);
+    if (j - i == 2) {
+      const uint32_t c0 = half[i].corner, c1 = half[i + 1].corner;
+      // Opposite directions, as the map's lookup of the reverse edge needs.
+      if (m.triangles[c0] == m.triangles[c1]) return foldover_vertices_mapped(m, limit);
+      const V3 n1 = face_normal(m, c1 / 3), n2 = face_normal(m, c0 / 3);
+      const double l = std::sqrt(dot(n1, n1) * dot(n2, n2));
+      if (l > 0 && dot(n1, n2) / l < limit) later.push_back(c1);
+    }
+    i = j;
+  }
+  std::sort(later.begin(), later.end());
+  std::vector<uint32_t> out;
+  out.reserve(2 * later.size());
+  for (uint32_t c : later) out.insert(out.end(), {m.triangles[c], m.triangles[c - c % 3 + (c + 1) % 3]});
   return out;
 }
 

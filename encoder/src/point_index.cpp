@@ -33,6 +33,37 @@ uint32_t PointIndex::nearest(const float q[3]) const {
   return i;
 }
 
+namespace {
+// A one-point result set whose search starts from a bound instead of from
+// infinity: nanoflann's KNNResultSet for one point but for that start.
+struct BoundedNearest {
+  float best;
+  uint32_t index;
+  bool addPoint(float dist, uint32_t i) {
+    if (dist < best) best = dist, index = i;
+    return true;
+  }
+  float worstDist() const { return best; }
+  bool full() const { return true; }
+};
+}  // namespace
+
+uint32_t PointIndex::nearest(const float q[3], uint32_t hint) const {
+  // The hint's distance, as nanoflann computes it, a little enlarged: every
+  // subtree holding a point as near as the hint is still searched (the
+  // enlargement covers the rounding of the subtrees' lower bounds), so the
+  // answer is a full search's; those farther are skipped.
+  const float* p = &points_.xyz[3 * size_t{hint}];
+  float d = 0;
+  for (int a = 0; a < 3; ++a) {
+    const float diff = q[a] - p[a];
+    d += diff * diff;
+  }
+  BoundedNearest r{d * (1 + 1e-5f) + 1e-30f, hint};
+  tree_->tree.findNeighbors(r, q, nanoflann::SearchParams());
+  return r.index;
+}
+
 size_t PointIndex::nearest_k(const float q[3], size_t k, uint32_t* indices, float* dist2) const {
   return tree_->tree.knnSearch(q, k, indices, dist2);
 }

@@ -54,6 +54,9 @@ ShrinkWrapStats shrink_wrap(TriangleMesh& m, const PointIndex& index, const Shri
   // check per vertex cannot see two sheets of a thin part meeting.  (Every
   // iteration would be safer still but doubles the time.)
   std::vector<float> safe = m.positions;
+  // Each vertex's nearest point, the next search's starting bound.
+  std::vector<uint32_t> hint(n);
+  for (size_t v = 0; v < n; ++v) hint[v] = index.nearest(&m.positions[3 * v]);
   for (int it = 0; it < o.max_iterations; ++it) {
     const auto normals = vertex_normals(m);
     double moved = 0;
@@ -62,7 +65,7 @@ ShrinkWrapStats shrink_wrap(TriangleMesh& m, const PointIndex& index, const Shri
     for (size_t v = 0; v < n; ++v) {
       const float* p = &m.positions[3 * v];
       // Projection: part of the way to the closest point.
-      const uint32_t c = index.nearest(p);
+      const uint32_t c = hint[v] = index.nearest(p, hint[v]);
       double q[3];
       for (int a = 0; a < 3; ++a) q[a] = p[a] + o.step * (pc.xyz[3 * c + a] - p[a]);
       // Smoothing: towards the neighbours' average within the tangent plane
@@ -105,7 +108,9 @@ ShrinkWrapStats shrink_wrap(TriangleMesh& m, const PointIndex& index, const Shri
   }
   // `safe` is the state the loop left (its last pass always checks).
   stats.untangled = untangle_folds(m);
-  stats.undone += undo_self_intersections(m, safe);
+  // With no fold met nothing moved since the loop's last check, which left
+  // no crossings: the search for them is skipped.
+  if (stats.untangled > 0) stats.undone += undo_self_intersections(m, safe);
   double sum = 0, worst = 0;
   for (size_t v = 0; v < n; ++v) {
     const float* p = &m.positions[3 * v];

@@ -54,6 +54,10 @@ struct Candidate {
   double cost;
   uint32_t u, v;
   uint32_t stamp_u, stamp_v;
+  // Where the collapse puts the vertex: still right when the candidate
+  // comes off the heap with both stamps unchanged (nothing it depends on
+  // has moved), so it is not solved for twice.
+  Vec3 p;
   bool operator>(const Candidate& o) const { return cost > o.cost; }
 };
 
@@ -91,8 +95,7 @@ class Simplifier {
       const Candidate c = heap_.top();
       heap_.pop();
       if (removed_[c.u] || removed_[c.v] || stamp_[c.u] != c.stamp_u || stamp_[c.v] != c.stamp_v) continue;
-      Vec3 p;
-      optimal(c.u, c.v, p);
+      const Vec3 p = c.p;
       if (!collapse_ok(c.u, c.v, p)) continue;
       collapse(c.u, c.v, p);
     }
@@ -122,15 +125,18 @@ class Simplifier {
   // ends' quadrics.  A half-edge without its opposite is a rim edge.
   void add_rim_planes() {
     rim_.assign(pos_.size(), 0);
-    std::vector<std::pair<uint32_t, uint32_t>> half;
-    half.reserve(tris_.size());
-    for (uint32_t f = 0; f < alive_.size(); ++f)
-      for (int k = 0; k < 3; ++k) half.push_back({tris_[3 * f + k], tris_[3 * f + (k + 1) % 3]});
-    std::sort(half.begin(), half.end());
+    // Is b -> a a side of a triangle at b?  Looked up in b's fan (a dozen
+    // triangles) rather than by sorting every half-edge of the shell.
+    const auto has_twin = [&](uint32_t a, uint32_t b) {
+      for (uint32_t g : faces_of_[b])
+        for (int k = 0; k < 3; ++k)
+          if (tris_[3 * g + k] == b && tris_[3 * g + (k + 1) % 3] == a) return true;
+      return false;
+    };
     for (uint32_t f = 0; f < alive_.size(); ++f)
       for (int k = 0; k < 3; ++k) {
         const uint32_t a = tris_[3 * f + k], b = tris_[3 * f + (k + 1) % 3];
-        if (std::binary_search(half.begin(), half.end(), std::pair{b, a})) continue;
+        if (has_twin(a, b)) continue;
         rim_[a] = rim_[b] = 1;
         const Vec3 edge = pos_[b] - pos_[a];
         const Vec3 n = edge.cross(face_cross(f));
@@ -185,7 +191,7 @@ class Simplifier {
   void push(uint32_t u, uint32_t v) {
     Vec3 p;
     const double e = optimal(u, v, p);
-    heap_.push({std::max(0.0, e), u, v, stamp_[u], stamp_[v]});
+    heap_.push({std::max(0.0, e), u, v, stamp_[u], stamp_[v], p});
   }
 
   void neighbours(uint32_t v, std::vector<uint32_t>& out) const {

@@ -60,7 +60,8 @@ struct ControlMeshStages {
   size_t projection_skipped = 0;  // control vertices left off the points (a fold), plus moves undone (a crossing)
   size_t untangled = 0;           // folded edges the simplification left, smoothed out before projection
   size_t relaxed = 0;             // vertex moves that cleared crossings the simplification left
-  StageTimes seconds;
+  StageTimes seconds;      // wall clock
+  StageTimes cpu_seconds;  // CPU time of the process (all threads summed), what one core would take
 };
 
 // Runs every stage.  Fails with invalid_argument for unusable points and

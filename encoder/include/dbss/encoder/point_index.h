@@ -19,6 +19,11 @@ class PointIndex {
 
   // Index of the point closest to q (ties: any).
   uint32_t nearest(const float q[3]) const;
+  // The same, faster when `hint` (any point's index) is near q: a vertex's
+  // nearest point from the last iteration.  Ties may resolve differently
+  // from nearest() only between points whose distances to q differ by
+  // rounding.
+  uint32_t nearest(const float q[3], uint32_t hint) const;
   // The k nearest points, closest first; returns how many were found.
   size_t nearest_k(const float q[3], size_t k, uint32_t* indices, float* dist2) const;
   // Indices of the points within `radius` of q (unordered).
