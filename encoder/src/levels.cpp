@@ -60,7 +60,7 @@ Result<EncodedLevels> encode_levels(const TriangleMesh& control, const PointInde
                                     const LevelEncodeOptions& o) {
   const float step = o.step;
   if (!(step > 0) || !std::isfinite(step)) return Status(ErrorCode::invalid_argument, "the step must be finite and positive");
-  auto refiner = LevelRefiner::create(control);
+  auto refiner = LevelRefiner::create(control, o.creases);
   if (!refiner.ok()) return refiner.status();
   LevelRefiner& r = refiner.value();
   EncodedLevels out;
