@@ -18,6 +18,7 @@
 #include "dbss/format/writer.h"
 #include "file_builder.h"
 #include "kernel_choice.h"
+#include "reference.h"
 
 using namespace dbss;
 
@@ -328,4 +329,42 @@ TEST_CASE("files without creases are written as 1.0, byte for byte as before") {
   CHECK(r.header().version_minor == 0);
   CHECK(!r.has_creases());
   for (const format::TocEntry& e : r.toc()) CHECK(!(e.type == format::kCrea));
+}
+
+TEST_CASE("the spec's reference decoder (spec/reference) gives the refiner's bits with creases, displaced or not") {
+  std::vector<std::pair<TriangleMesh, format::Creases>> cases{
+      {test::cube(), cube_creases()},
+      {test::roof_block(4), test::creases_from_dihedral(test::roof_block(4), 30)},
+      {test::capped_cylinder(10, 4), test::creases_from_dihedral(test::capped_cylinder(10, 4), 30)}};
+  {
+    TriangleMesh t = test::torus(8, 6);  // a dart (one crease edge ending) and a lone corner tag
+    auto topo = build_topology(static_cast<uint32_t>(t.vertex_count()), t.triangles).value();
+    format::Creases c{std::vector<uint8_t>(topo.edge_count(), 0), std::vector<uint8_t>(topo.vertex_count, 0)};
+    c.edge[0] = c.edge[5] = c.edge[9] = 1;
+    c.corner[7] = 1;
+    cases.push_back({t, c});
+  }
+  for (const auto& [m, c] : cases) {
+    for (int32_t amplitude : {0, 30}) {
+      auto r = LevelRefiner::create(m, c).value();
+      dbss_ref::Mesh ref{m.positions, m.triangles, c.edge, c.corner};
+      uint32_t s = 7;
+      for (int l = 0; l < 3; ++l) {
+        std::vector<int32_t> q;
+        if (amplitude) {
+          q.resize(r.next_odd_count());
+          for (auto& v : q) s = s * 1664525u + 1013904223u, v = static_cast<int32_t>((s >> 8) % 61) - 30;
+        }
+        const OddChooser from_q = [&](uint32_t e, const double*, const double*, const float*, const float*) {
+          return q.empty() ? 0 : q[e];
+        };
+        std::vector<int32_t> used;
+        r.refine(from_q, 1e-3f, used);
+        ref = dbss_ref::subdivide(ref, q, 1e-3f);
+        INFO("level " << l + 1 << " amplitude " << amplitude);
+        REQUIRE(ref.triangles.size() == r.triangles().size());
+        CHECK(std::equal(ref.positions.begin(), ref.positions.end(), r.positions().begin(), r.positions().end()));
+      }
+    }
+  }
 }

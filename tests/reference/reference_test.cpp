@@ -38,7 +38,7 @@ std::vector<uint64_t> read_hashes(const std::string& path) {
   return out;
 }
 
-dbss_ref::Mesh to_ref(const dbss::TriangleMesh& m) { return {m.positions, m.triangles}; }
+dbss_ref::Mesh to_ref(const dbss::TriangleMesh& m) { return {m.positions, m.triangles, {}, {}}; }
 
 bool same_bits(std::span<const float> a, std::span<const float> b) {
   return a.size() == b.size() && std::memcmp(a.data(), b.data(), 4 * a.size()) == 0;
