@@ -52,6 +52,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   c.control_mesh.assign(whole.control_payload().begin(), whole.control_payload().end());
   for (uint32_t l = 1; l <= whole.levels_ready(); ++l) c.levels.push_back(whole.level(l));
   c.metadata = whole.metadata();
+  c.creases = whole.creases();
   auto again = serialize(c, {1});
   check(again.ok(), "a file the reader accepted does not serialize");
   limits.verify_checksums = true;  // our own writer's CRCs must hold
@@ -60,5 +61,6 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   check(back.header() == c.header, "header changed in the round trip");
   for (uint32_t l = 1; l <= back.levels_ready(); ++l) check(back.level(l) == c.levels[l - 1], "level changed");
   check(back.metadata() == c.metadata, "metadata changed in the round trip");
+  check(back.creases() == c.creases, "crease tags changed in the round trip");
   return 0;
 }

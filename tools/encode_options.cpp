@@ -28,7 +28,11 @@ const char* const kEncodeOptionsHelp =
     "                         holes in the scan, open keeps a boundary where the\n"
     "                         points end; auto picks one and says why\n"
     "  --keep-outliers        keep every point (default: isolated points and\n"
-    "                         clusters under 2% of the points are dropped)\n";
+    "                         clusters under 2% of the points are dropped)\n"
+    "  --crease-angle DEG     tag control edges as creases where the points'\n"
+    "                         planes on either side meet at more than DEG\n"
+    "                         degrees, 1..179, or off (the default; tags make\n"
+    "                         a version 1.1 file)\n";
 static_assert(format::kMaxLevelsInPractice == 8, "--levels' help above says 0..8");
 
 
@@ -40,7 +44,7 @@ OptionParse parse_encode_option(const std::vector<std::string_view>& args, size_
     return OptionParse::ok;
   }
   const bool known = a == "--grid" || a == "--control-faces" || a == "--control-bits" || a == "--levels" ||
-                     a == "--error" || a == "--step" || a == "--effort" || a == "--surface";
+                     a == "--error" || a == "--step" || a == "--effort" || a == "--surface" || a == "--crease-angle";
   if (!known) return OptionParse::not_mine;
   std::string_view v;
   if (i + 1 < args.size()) v = args[++i];
@@ -76,6 +80,11 @@ OptionParse parse_encode_option(const std::vector<std::string_view>& args, size_
     else if (v == "closed") o.control.surface = SurfaceMode::closed;
     else if (v == "open") o.control.surface = SurfaceMode::open;
     else return error = "--surface needs closed, open or auto", OptionParse::bad;
+  } else if (a == "--crease-angle") {
+    if (v == "off") o.creases.angle_degrees = 0;
+    else if (!parse_double(v, x) || !(x >= 1 && x <= 179))
+      return error = "--crease-angle needs a number of degrees from 1 to 179, or off", OptionParse::bad;
+    else o.creases.angle_degrees = x;
   } else if (a == "--step") {
     if (!parse_double(v, x) || !(x > 0 && x < 1e30)) return error = "--step needs a positive number", OptionParse::bad;
     o.step = x;

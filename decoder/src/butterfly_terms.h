@@ -48,15 +48,44 @@ void edge_terms(const TopologyRef& t, uint32_t h, Sink& b) {
     add(tri[next_half(t.vertex_start[w])], -1.0 / 16);
     return;
   }
+  // Creases (spec section 5.4) are a boundary inside the mesh.  Only this
+  // generic path sees them: an edge whose ends are both smooth interior
+  // vertices (the fast path) has no crease among its wings.
+  const uint8_t* crease = t.crease;
+  const auto on_crease = [&](uint32_t x) { return crease && crease[t.edge_of[x]]; };
+  if (on_crease(h)) {
+    // The four-point rule along the crease polyline.  b (before u) and a
+    // (after w) are the other crease neighbours of u and w; at a polyline
+    // end the missing point is the reflection 2u - w (or 2w - u), folded
+    // into the weights so each vertex appears once.
+    const auto other = [&](uint32_t x, uint32_t v) {  // x: an outgoing half-edge of v, on this crease
+      for (uint32_t n = t.valence[v]; n > 1; --n) {
+        x = twin[prev_half(x)];  // counter-clockwise; v is interior (not an end)
+        if (on_crease(x)) break;
+      }
+      return tri[next_half(x)];
+    };
+    const bool end_u = t.boundary[u] & kVertexCreaseEnd, end_w = t.boundary[w] & kVertexCreaseEnd;
+    if (end_u && end_w) {  // both reflected: the midpoint
+      add(u, 0.5), add(w, 0.5);
+      return;
+    }
+    if (!end_u) add(other(h, u), -1.0 / 16);
+    add(u, end_u ? 7.0 / 16 : end_w ? 10.0 / 16 : 9.0 / 16);
+    add(w, end_w ? 7.0 / 16 : end_u ? 10.0 / 16 : 9.0 / 16);
+    if (!end_w) add(other(o, w), -1.0 / 16);
+    return;
+  }
   const bool xu = !t.boundary[u] && t.valence[u] != 6;
   const bool xw = !t.boundary[w] && t.valence[w] != 6;
   if (!xu && !xw) {
     // Third vertex of the triangle across half-edge x, or the parallelogram
-    // reflection of `away` across the edge when x is on the boundary (as in
-    // OpenMesh's ModifiedButterFlyT): the wing a + b - away, weight -1/16.
+    // reflection of `away` across the edge when x is on the boundary or a
+    // crease (as in OpenMesh's ModifiedButterFlyT): the wing a + b - away,
+    // weight -1/16.
     const auto wing = [&](uint32_t x, uint32_t away) {
       const uint32_t y = twin[x];
-      if (y != kNoHalfEdge) {
+      if (y != kNoHalfEdge && !on_crease(x)) {
         add(tri[prev_half(y)], -1.0 / 16);
       } else {
         add(tri[x], -1.0 / 16);

@@ -19,8 +19,14 @@ LevelRefiner::LevelRefiner(LevelRefiner&&) noexcept = default;
 LevelRefiner& LevelRefiner::operator=(LevelRefiner&&) noexcept = default;
 
 Result<LevelRefiner> LevelRefiner::create(const TriangleMesh& control, const LevelRefinerOptions& options) {
+  return create(control, format::Creases{}, options);
+}
+
+Result<LevelRefiner> LevelRefiner::create(const TriangleMesh& control, const format::Creases& creases,
+                                          const LevelRefinerOptions& options) {
   auto topo = build_topology(static_cast<uint32_t>(control.vertex_count()), control.triangles);
   if (!topo.ok()) return topo.status();
+  if (Status st = set_creases(topo.value(), creases.edge, creases.corner); !st.ok()) return st;
   auto s = std::make_unique<State>(options.kernels);
   s->base = std::move(topo).value();
   s->base_positions = control.positions;

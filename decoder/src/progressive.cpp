@@ -60,6 +60,17 @@ struct ProgressiveDecoder::State {
     return {};
   }
 
+  // The crease tags arrive in CREA, after CTRL and before LEVL 1: level 0
+  // can be drawn without them, level 1 cannot be computed without them.
+  bool creases_applied = false;
+  Status apply_creases() {
+    const format::Creases& c = reader.creases();
+    if (Status st = set_creases(base_topology, c.edge, c.corner); !st.ok())
+      return fail(st.code(), "crease tags: " + st.message());
+    creases_applied = true;
+    have_current = false;  // the refiner's level-0 tables predate them
+    return {};
+  }
   void reset_to_base() {
     current.reset(base_topology, base_positions);
     have_current = true;
@@ -100,6 +111,7 @@ void ProgressiveDecoder::reset() {
   s.reader = format::Reader(s.options.limits);
   s.status = {};
   s.have_base = false;
+  s.creases_applied = false;
   s.base_topology = {};
   s.base_positions = {};
   s.have_current = false;
@@ -132,6 +144,9 @@ Result<MeshView> ProgressiveDecoder::decode(uint32_t level) {
     }
     if (s.options.keep_levels && level < s.kept_positions.size())
       return MeshView{level, s.kept_positions[level], s.kept_triangles[level]};
+    if (level > 0 && s.reader.has_creases() && !s.creases_applied) {
+      if (Status st = s.apply_creases(); !st.ok()) return st;
+    }
     if (!s.have_current || level < s.current.level()) s.reset_to_base();
     while (s.current.level() < level) {
       if (Status st = s.step(); !st.ok()) return st;

@@ -14,19 +14,22 @@ TopologyRef Refiner::Topology::ref() const {
   r.tri = tri.data(), r.twin = twin.data(), r.edge_of = edge_of.data(), r.edge_half = edge_half.data();
   r.vertex_start = vertex_start.data(), r.valence = valence.data(), r.boundary = boundary.data();
   r.across = across.data();
+  r.crease = has_creases ? crease.data() : nullptr;
   return r;
 }
 
 void Refiner::Topology::release(BlockPool* pool) {
   for (Buffer<uint32_t>* b : {&tri, &twin, &edge_of, &edge_half, &vertex_start, &across}) b->release(pool);
   valence.release(pool);
-  boundary.release(pool);
+  for (Buffer<uint8_t>* b : {&boundary, &crease}) b->release(pool);
+  has_creases = false;
 }
 
 void Refiner::Topology::swap(Topology& o) noexcept {
   std::swap(vertex_count, o.vertex_count), std::swap(face_count, o.face_count), std::swap(edge_count, o.edge_count);
   tri.swap(o.tri), twin.swap(o.twin), edge_of.swap(o.edge_of), edge_half.swap(o.edge_half);
   vertex_start.swap(o.vertex_start), across.swap(o.across), valence.swap(o.valence), boundary.swap(o.boundary);
+  crease.swap(o.crease), std::swap(has_creases, o.has_creases);
 }
 
 void Refiner::recycle() {
@@ -93,8 +96,11 @@ TopologyRef Refiner::current_topology(unsigned threads) {
   c.vertex_start.resize_for_overwrite(c.vertex_count, &pool_);
   c.valence.resize_for_overwrite(c.vertex_count, &pool_);
   c.boundary.resize_for_overwrite(c.vertex_count, &pool_);
+  c.has_creases = p.crease != nullptr;
+  if (c.has_creases) c.crease.resize_for_overwrite(c.edge_count, &pool_);
   const TopologyOut out{nullptr,          c.twin.data(),    c.edge_of.data(),  c.edge_half.data(),
-                        c.vertex_start.data(), c.valence.data(), c.boundary.data(), c.across.data()};
+                        c.vertex_start.data(), c.valence.data(), c.boundary.data(), c.across.data(),
+                        c.has_creases ? c.crease.data() : nullptr};
   parallel(p.face_count, threads, [&](uint32_t fb, uint32_t fe) {
     refine_faces(p, fb, fe, out);
     // Even vertices: the same share of the parent's vertices.

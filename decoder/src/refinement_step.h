@@ -52,6 +52,8 @@ class Refiner {
     Buffer<uint32_t> tri, twin, edge_of, edge_half, vertex_start, across;
     Buffer<uint16_t> valence;
     Buffer<uint8_t> boundary;
+    Buffer<uint8_t> crease;  // per edge; used only when has_creases
+    bool has_creases = false;
     TopologyRef ref() const;
     void release(BlockPool* pool = nullptr);  // storage to `pool`, or freed
     void swap(Topology& o) noexcept;

@@ -119,4 +119,38 @@ Result<LevelTopology> build_topology(uint32_t vertex_count, std::span<const uint
   return t;
 }
 
+Status set_creases(LevelTopology& t, std::span<const uint8_t> edge, std::span<const uint8_t> corner) {
+  if (edge.empty() && corner.empty()) return {};
+  if (edge.size() != t.edge_count() || corner.size() != t.vertex_count)
+    return Status(ErrorCode::bad_mesh, "crease tags for " + std::to_string(edge.size()) + " edges and " +
+                                           std::to_string(corner.size()) + " vertices; the control mesh has " +
+                                           std::to_string(t.edge_count()) + " and " + std::to_string(t.vertex_count));
+  std::vector<uint8_t> creases(t.vertex_count, 0);  // crease edges per vertex (valence <= 64 fits)
+  for (uint32_t e = 0; e < t.edge_count(); ++e) {
+    if (!edge[e]) continue;
+    const uint32_t h = t.edge_half[e];
+    const uint32_t u = t.triangles[h], w = t.triangles[next_half(h)];
+    // A boundary edge already follows the boundary rule: a crease bit there
+    // would say nothing, so the spec forbids it (one file per meaning).
+    if (t.twin[h] == kNoHalfEdge)
+      return Status(ErrorCode::bad_mesh, "crease edge " + std::to_string(e) + " (" + std::to_string(u) + "-" +
+                                             std::to_string(w) + ") is on the boundary");
+    ++creases[u], ++creases[w];
+  }
+  t.edge_crease.assign(edge.begin(), edge.end());
+  for (uint8_t& b : t.edge_crease) b = b ? 1 : 0;
+  bool any = false;
+  for (uint32_t v = 0; v < t.vertex_count; ++v) {
+    uint8_t& kind = t.vertex_boundary[v];
+    if (creases[v] == 0 && !corner[v]) continue;
+    kind = static_cast<uint8_t>(kind | kVertexSharp);
+    // The four-point rule along a crease needs one more crease vertex on
+    // each side: anything but a plain interior crease vertex stops it.
+    if (corner[v] || creases[v] != 2 || (kind & kVertexBoundary)) kind = static_cast<uint8_t>(kind | kVertexCreaseEnd);
+    any = true;
+  }
+  if (!any) t.edge_crease.clear();  // no tag at all: decodes as 1.0
+  return {};
+}
+
 }  // namespace dbss

@@ -22,6 +22,8 @@ struct TopologyRef {
   // (kNoHalfEdge on the boundary).  Saves the stencils a dependent load per
   // wing; null means "look it up through twin".
   const uint32_t* across = nullptr;
+  // Per edge, non-zero on a crease; null when the level has none.
+  const uint8_t* crease = nullptr;
 };
 
 inline uint32_t across_of(const TopologyRef& t, uint32_t x) noexcept {
@@ -35,6 +37,7 @@ inline TopologyRef ref_of(const LevelTopology& t) {
   r.vertex_count = t.vertex_count, r.face_count = t.triangle_count(), r.edge_count = t.edge_count();
   r.tri = t.triangles.data(), r.twin = t.twin.data(), r.edge_of = t.edge_of.data(), r.edge_half = t.edge_half.data();
   r.vertex_start = t.vertex_start.data(), r.valence = t.vertex_valence.data(), r.boundary = t.vertex_boundary.data();
+  r.crease = t.edge_crease.empty() ? nullptr : t.edge_crease.data();
   return r;
 }
 
@@ -61,6 +64,7 @@ struct TopologyOut {
   uint16_t* valence;
   uint8_t* boundary;
   uint32_t* across = nullptr;
+  uint8_t* crease = nullptr;  // written only when the parent has creases
 };
 
 // The child tables of parent faces [fb, fe) (their 4 children each, and the

@@ -88,12 +88,18 @@ void refine_faces(const TopologyRef& p, uint32_t fb, uint32_t fe, const Topology
       c.edge_of[cf + s] = e;
       if (c.edge_half) c.edge_half[e] = cf + s;
     };
+    // Crease flags: both halves of a crease edge are creases, the edges
+    // inside f never are; each child edge is written by the face that
+    // opens it.
+    const bool creases = p.crease && c.crease;
     for (uint32_t k = 0; k < 3; ++k) {
       const uint32_t first = 3 * k, second = 3 * ((k + 1) % 3) + 2;  // the halves of parent 3f+k
       number(3 * k + 1, base + rank[3 * k + 1]);                       // inner edge m_k -> m_{k+2}
+      if (creases) c.crease[base + rank[3 * k + 1]] = 0;
       if (open >> k & 1) {
         number(first, base + rank[first]);
         number(second, base + rank[second]);
+        if (creases) c.crease[base + rank[first]] = c.crease[base + rank[second]] = p.crease[p.edge_of[3 * f + k]];
         continue;
       }
       const uint32_t g = ptw[k], gf = g / 3, j = g % 3;
@@ -136,14 +142,16 @@ void refine_faces(const TopologyRef& p, uint32_t fb, uint32_t fe, const Topology
       } else {
         c.vertex_start[v] = cf + 3 * k + 1;
         c.valence[v] = 6;
-        c.boundary[v] = 0;
+        // On a crease edge: a sharp vertex with two crease edges, never an end.
+        c.boundary[v] = p.crease && p.crease[v - p.vertex_count] ? kVertexSharp : 0;
       }
     }
   }
 }
 
 void refine_vertices(const TopologyRef& p, uint32_t vb, uint32_t ve, const TopologyOut& c) {
-  // Even vertices keep valence and boundary flag; their fan starts at the
+  // Even vertices keep valence and kind (boundary, sharp, crease end: the
+  // crease edges at a vertex keep their number); their fan starts at the
   // first half of the parent's start half-edge.
   for (uint32_t v = vb; v < ve; ++v) {
     const uint32_t h = p.vertex_start[v];
@@ -173,9 +181,11 @@ LevelTopology refine_topology(const LevelTopology& parent) {
   c.vertex_start.resize(c.vertex_count);
   c.vertex_valence.resize(c.vertex_count);
   c.vertex_boundary.resize(c.vertex_count);
-  const detail::TopologyOut out{c.triangles.data(),    c.twin.data(),           c.edge_of.data(),
-                                c.edge_half.data(),    c.vertex_start.data(),   c.vertex_valence.data(),
-                                c.vertex_boundary.data()};
+  if (p.crease) c.edge_crease.resize(c.edge_half.size());
+  detail::TopologyOut out{c.triangles.data(),    c.twin.data(),           c.edge_of.data(),
+                          c.edge_half.data(),    c.vertex_start.data(),   c.vertex_valence.data(),
+                          c.vertex_boundary.data()};
+  if (p.crease) out.crease = c.edge_crease.data();
   detail::refine_faces(p, 0, p.face_count, out);
   detail::refine_vertices(p, 0, p.vertex_count, out);
   return c;

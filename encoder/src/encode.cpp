@@ -92,6 +92,12 @@ Result<Encoding> encode_points(const PointIndex& input_index, const EncodeOption
   // 16 bits cost 30% more level-0 bytes than 12-13 for no error at any level.
   e.control_bits = o.control_bits ? o.control_bits : control_bits_for_step(e.stages.control, e.step);
 
+  // Sharp features: crease edges found from the points, their vertices
+  // snapped onto the feature lines before Draco rounds them.
+  t = Clock::now();
+  format::Creases creases = find_creases(e.stages.control, index, o.creases, &e.creases);
+  e.seconds.control += since(t);
+
   // The file holds Draco's version of the control mesh; everything after
   // continues from what a decoder will see.
   t = Clock::now();
@@ -104,6 +110,9 @@ Result<Encoding> encode_points(const PointIndex& input_index, const EncodeOption
   if (!topo.ok()) return Status(ErrorCode::internal, "control mesh after Draco: " + topo.status().to_string());
   e.seconds.draco = since(t);
 
+  // Draco renumbers: the tags follow the vertices to the decoded mesh.
+  c.creases = transfer_creases(e.stages.control, creases, e.control);
+  if (!c.creases.empty()) c.header.version_minor = format::kCreaseVersionMinor;
   c.header.control_position_bits = static_cast<uint8_t>(e.control_bits);
   c.header.control_vertex_count = static_cast<uint32_t>(e.control.vertex_count());
   c.header.control_edge_count = topo.value().edge_count();
@@ -120,6 +129,7 @@ Result<Encoding> encode_points(const PointIndex& input_index, const EncodeOption
   lo.step = e.step;
   lo.zstd_level = o.effort;
   lo.threads = std::max(1u, o.threads);
+  lo.creases = c.creases;
   if (o.on_progress)
     lo.on_level = [&](uint32_t l) {
       o.on_progress("sampling level " + std::to_string(l) + " of " + std::to_string(level_count));

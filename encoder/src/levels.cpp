@@ -77,7 +77,7 @@ Result<EncodedLevels> encode_levels(const TriangleMesh& control, const LevelSamp
   const float step = o.step;
   if (!(step > 0) || !std::isfinite(step)) return Status(ErrorCode::invalid_argument, "the step must be finite and positive");
   if (!sampler.sample) return Status(ErrorCode::invalid_argument, "no displacement sampler");
-  auto refiner = LevelRefiner::create(control);
+  auto refiner = LevelRefiner::create(control, o.creases);
   if (!refiner.ok()) return refiner.status();
   LevelRefiner& r = refiner.value();
   EncodedLevels out;

@@ -193,6 +193,8 @@ Status Reader::end_chunk() {
     s = on_level();
   } else if (chunk_type_ == kMeta) {
     s = on_meta();
+  } else if (chunk_type_ == kCrea) {
+    s = on_creases();
   } else {
     ++ancillary_skipped_;  // unknown critical types were refused with the table of contents
   }
@@ -272,7 +274,7 @@ Status Reader::on_toc() {
   std::vector<TocEntry> toc;
   toc.reserve(count);  // count <= max_chunks, checked in begin_chunk
   uint64_t expect = offset_;
-  uint32_t controls = 0, levels = 0;
+  uint32_t controls = 0, levels = 0, creases = 0;
   for (uint32_t i = 0; i < count; ++i) {
     const uint8_t* p = d + 16 + 16 * size_t{i};
     const uint64_t eat = at + 16 + 16 * uint64_t{i};
@@ -295,9 +297,16 @@ Status Reader::on_toc() {
     } else if (e.type == kLevl) {
       if (controls == 0) return fail(ErrorCode::bad_structure, name + ": LEVL before CTRL", eat);
       ++levels;
+    } else if (e.type == kCrea && header_.version_minor >= kCreaseVersionMinor) {
+      // Version 1.1: at most one, after CTRL, before every LEVL (level 1 needs it).
+      if (++creases > 1) return fail(ErrorCode::bad_structure, name + ": a second CREA chunk", eat);
+      if (controls == 0 || levels > 0) return fail(ErrorCode::bad_structure, name + ": CREA must come after CTRL and before every LEVL", eat);
     } else if (e.type.critical()) {
+      // CREA in a file that says 1.0 is as unknown as to a 1.0 reader.
       return fail(ErrorCode::unknown_critical_chunk,
-                  name + ": critical chunk type unknown to this reader (version 1.0)", eat);
+                  name + ": critical chunk type unknown to this reader in a file of version 1." +
+                      std::to_string(header_.version_minor),
+                  eat);
     }
     toc.push_back(e);
   }
@@ -406,6 +415,17 @@ Status Reader::on_level() {
   if (Status s = unpack_displacements(raw, level.coding, count, at + kLevelFixed, level.q); !s.ok())
     return fail(s.code(), name + ": " + s.message(), s.offset());
   levels_.push_back(std::move(level));
+  return {};
+}
+
+Status Reader::on_creases() {
+  Creases c;
+  if (Status s = parse_creases(chunk_data_, header_.control_edge_count, header_.control_vertex_count,
+                               chunk_offset_ + 8, c);
+      !s.ok())
+    return fail(s.code(), s.message(), s.offset());
+  creases_ = std::move(c);
+  has_creases_ = true;
   return {};
 }
 

@@ -203,4 +203,68 @@ Status parse_meta(std::span<const uint8_t> data, uint64_t at, std::vector<MetaEn
   return {};
 }
 
+namespace {
+constexpr uint32_t kCreaFixed = 12;  // coding, reserved, the two counts
+uint64_t bitmap_bytes(uint32_t n) { return (uint64_t{n} + 7) / 8; }
+}  // namespace
+
+Result<std::vector<uint8_t>> encode_creases(const Creases& c, uint32_t edges, uint32_t vertices) {
+  if (c.edge.size() != edges || c.corner.size() != vertices)
+    return Status(ErrorCode::invalid_argument, "crease tags for " + std::to_string(c.edge.size()) + " edges and " +
+                                                   std::to_string(c.corner.size()) + " vertices; the control mesh has " +
+                                                   std::to_string(edges) + " and " + std::to_string(vertices));
+  std::vector<uint8_t> d(kCreaFixed + bitmap_bytes(edges) + bitmap_bytes(vertices), 0);
+  uint32_t crease_count = 0, corner_count = 0;
+  uint8_t* bits = d.data() + kCreaFixed;
+  for (uint32_t e = 0; e < edges; ++e)
+    if (c.edge[e]) bits[e / 8] = static_cast<uint8_t>(bits[e / 8] | 1u << (e % 8)), ++crease_count;
+  bits += bitmap_bytes(edges);
+  for (uint32_t v = 0; v < vertices; ++v)
+    if (c.corner[v]) bits[v / 8] = static_cast<uint8_t>(bits[v / 8] | 1u << (v % 8)), ++corner_count;
+  if (crease_count + corner_count == 0)
+    return Status(ErrorCode::invalid_argument, "crease tags without a crease or corner: write no CREA chunk");
+  for (int k = 0; k < 4; ++k) {
+    d[4 + k] = static_cast<uint8_t>(crease_count >> 8 * k);
+    d[8 + k] = static_cast<uint8_t>(corner_count >> 8 * k);
+  }
+  return d;
+}
+
+Status parse_creases(std::span<const uint8_t> d, uint32_t edges, uint32_t vertices, uint64_t at, Creases& out) {
+  const uint64_t edge_bytes = bitmap_bytes(edges), vertex_bytes = bitmap_bytes(vertices);
+  if (d.size() != kCreaFixed + edge_bytes + vertex_bytes)
+    return Status(ErrorCode::bad_field,
+                  "CREA: " + std::to_string(d.size()) + " bytes, expected " +
+                      std::to_string(kCreaFixed + edge_bytes + vertex_bytes) + " for " + std::to_string(edges) +
+                      " edges and " + std::to_string(vertices) + " vertices",
+                  at);
+  if (d[0] != 0) return Status(ErrorCode::bad_field, "CREA: unknown coding " + std::to_string(d[0]), at);
+  if (d[1] | d[2] | d[3]) return Status(ErrorCode::bad_field, "CREA: reserved bytes are not zero", at + 1);
+  const auto u32 = [&](size_t i) {
+    return uint32_t{d[i]} | uint32_t{d[i + 1]} << 8 | uint32_t{d[i + 2]} << 16 | uint32_t{d[i + 3]} << 24;
+  };
+  const uint32_t crease_count = u32(4), corner_count = u32(8);
+  Creases c;
+  c.edge.resize(edges);
+  c.corner.resize(vertices);
+  uint32_t creases = 0, corners = 0;
+  const uint8_t* bits = d.data() + kCreaFixed;
+  for (uint32_t e = 0; e < edges; ++e) creases += c.edge[e] = static_cast<uint8_t>(bits[e / 8] >> (e % 8) & 1);
+  bits += edge_bytes;
+  for (uint32_t v = 0; v < vertices; ++v) corners += c.corner[v] = static_cast<uint8_t>(bits[v / 8] >> (v % 8) & 1);
+  // Bits past the last edge or vertex in their last byte.
+  if (edges % 8 && d[kCreaFixed + edge_bytes - 1] >> (edges % 8))
+    return Status(ErrorCode::bad_field, "CREA: padding bits after the last edge are not zero", at + kCreaFixed + edge_bytes - 1);
+  if (vertices % 8 && d.back() >> (vertices % 8))
+    return Status(ErrorCode::bad_field, "CREA: padding bits after the last vertex are not zero", at + d.size() - 1);
+  if (crease_count != creases || corner_count != corners)
+    return Status(ErrorCode::bad_field,
+                  "CREA: counts say " + std::to_string(crease_count) + " creases and " + std::to_string(corner_count) +
+                      " corners, the bits " + std::to_string(creases) + " and " + std::to_string(corners),
+                  at + 4);
+  if (creases + corners == 0) return Status(ErrorCode::bad_field, "CREA: no crease and no corner", at + 4);
+  out = std::move(c);
+  return {};
+}
+
 }  // namespace dbss::format::detail

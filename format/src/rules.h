@@ -37,4 +37,11 @@ bool utf8_valid(std::string_view s);
 // the offset (`at` + position in `data`) of the first problem.
 Status parse_meta(std::span<const uint8_t> data, uint64_t at, std::vector<MetaEntry>& entries);
 
+// CREA chunk data (spec section 10a) for a control mesh of `edges` edges
+// and `vertices` vertices.  encode_creases: invalid_argument if the sizes
+// differ or no bit is set.  parse_creases: the checks of section 10a in
+// order, bad_field with the offset (`at` + position).
+Result<std::vector<uint8_t>> encode_creases(const Creases& c, uint32_t edges, uint32_t vertices);
+Status parse_creases(std::span<const uint8_t> data, uint32_t edges, uint32_t vertices, uint64_t at, Creases& out);
+
 }  // namespace dbss::format::detail

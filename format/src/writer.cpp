@@ -138,6 +138,10 @@ std::vector<uint8_t> assemble_file(std::span<const uint8_t> head_data, std::span
 
 }  // namespace
 
+Result<std::vector<uint8_t>> encode_creases(const Creases& creases, uint32_t edges, uint32_t vertices) {
+  return detail::encode_creases(creases, edges, vertices);
+}
+
 std::vector<uint8_t> assemble(std::span<const uint8_t> head_data, std::span<const RawChunk> body) {
   return assemble_file(head_data, body, nullptr);
 }
@@ -169,6 +173,14 @@ Result<SerializedFile> serialize_with_toc(const FileContents& c, const WriteOpti
 
   std::vector<RawChunk> body;
   body.push_back({kCtrl, encode_control(c.control_codec, c.control_mesh)});
+  if (!c.creases.empty()) {
+    if (c.header.version_minor < kCreaseVersionMinor)
+      return bad("crease tags need version 1." + std::to_string(kCreaseVersionMinor) + ", the header says 1." +
+                 std::to_string(c.header.version_minor));
+    auto data = detail::encode_creases(c.creases, c.header.control_edge_count, c.header.control_vertex_count);
+    if (!data.ok()) return data.status();
+    body.push_back({kCrea, std::move(data).value()});
+  }
   for (size_t i = 0; i < c.levels.size(); ++i) {
     const Level& level = c.levels[i];
     if (level.index != i + 1) return bad("levels[" + std::to_string(i) + "] has index " + std::to_string(level.index));

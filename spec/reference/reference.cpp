@@ -45,6 +45,7 @@ bool type_is(const uint8_t* p, const char* name) { return std::memcmp(p, name, 4
 
 // Section 6: the header fields that decoding needs.
 struct Head {
+  uint16_t minor;
   uint8_t level_count;
   uint32_t V0, E0, F0;
   std::vector<uint64_t> edges;  // derived E_l, l = 0..L
@@ -99,6 +100,7 @@ Head parse_head(std::span<const uint8_t> d) {
   if (minor == 0 && d.size() != 56) fail("bad_structure");  // section 12, HEAD row
   if (major != 1) fail("unsupported_version");
   Head h;
+  h.minor = minor;
   h.level_count = p[8];
   h.V0 = u32(p + 12);
   h.E0 = u32(p + 16);
@@ -149,7 +151,7 @@ std::vector<Entry> parse_index(std::span<const uint8_t> d, uint64_t body_start, 
   if (u32(p + 12) != 0) fail("bad_field");  // reserved
   std::vector<Entry> entries(n);
   uint64_t expected = body_start;
-  uint32_t ctrl = 0, levl = 0;
+  uint32_t ctrl = 0, levl = 0, crea = 0;
   for (uint32_t i = 0; i < n; ++i) {
     const uint8_t* e = p + 16 + 16 * size_t{i};
     Entry& entry = entries[i];
@@ -165,6 +167,8 @@ std::vector<Entry> parse_index(std::span<const uint8_t> d, uint64_t body_start, 
       if (++ctrl > 1 || levl > 0) fail("bad_structure");  // rule 4
     } else if (type_is(e, "LEVL")) {
       ++levl;
+    } else if (type_is(e, "CREA") && head.minor >= 1) {
+      if (++crea > 1 || ctrl == 0 || levl > 0) fail("bad_structure");  // rule 8
     } else if (e[0] >= 'A' && e[0] <= 'Z') {
       fail("unknown_critical_chunk");  // rule 6
     }
@@ -255,6 +259,26 @@ Levl read_levl(std::span<const uint8_t> d, uint32_t level, uint64_t edges) {
   return out;
 }
 
+// Section 10a: the crease tags, one byte per edge and per vertex.
+void read_crea(std::span<const uint8_t> d, const Head& head, Mesh& level0) {
+  const uint64_t edge_bytes = (uint64_t{head.E0} + 7) / 8, vertex_bytes = (uint64_t{head.V0} + 7) / 8;
+  if (d.size() != 12 + edge_bytes + vertex_bytes) fail("bad_field");  // check 1
+  if (d[0] != 0) fail("bad_field");                                   // 2: coding
+  if (d[1] != 0 || d[2] != 0 || d[3] != 0) fail("bad_field");         // 3: reserved
+  const auto bit = [&](uint64_t byte, uint32_t i) { return (d[12 + byte + i / 8] >> (i % 8)) & 1; };
+  for (uint32_t i = head.E0; i < 8 * edge_bytes; ++i)  // 4: padding, edge map then vertex map
+    if (bit(0, i)) fail("bad_field");
+  for (uint32_t i = head.V0; i < 8 * vertex_bytes; ++i)
+    if (bit(edge_bytes, i)) fail("bad_field");
+  level0.crease.assign(head.E0, 0);
+  level0.corner.assign(head.V0, 0);
+  uint32_t creases = 0, corners = 0;
+  for (uint32_t e = 0; e < head.E0; ++e) creases += level0.crease[e] = static_cast<uint8_t>(bit(0, e));
+  for (uint32_t v = 0; v < head.V0; ++v) corners += level0.corner[v] = static_cast<uint8_t>(bit(edge_bytes, v));
+  if (u32(d.data() + 4) != creases || u32(d.data() + 8) != corners) fail("bad_field");  // 5
+  if (creases + corners == 0) fail("bad_field");                                          // 6
+}
+
 // Section 10.
 void check_meta(std::span<const uint8_t> d) {
   if (d.size() < 4) fail("bad_field");
@@ -325,8 +349,12 @@ Decoded decode(std::span<const uint8_t> file) {
       });
       if (type_is(entry.type.data(), "CTRL")) {
         out.levels.push_back(read_ctrl(data, head));
+      } else if (type_is(entry.type.data(), "CREA")) {
+        read_crea(data, head, out.levels.back());  // placed after CTRL by rule 8
       } else if (type_is(entry.type.data(), "LEVL")) {
         ++level;
+        // decoding.md section 2 step 6, checked when level 1 is computed.
+        if (level == 1 && !detail::creases_fit(out.levels.back())) fail("bad_mesh");
         // odd_count = E_{level-1}, from the derived counts.
         const Levl levl = read_levl(data, level, head.edges[level - 1]);
         // Level l+1 from the displaced level l (decoding.md section 7).

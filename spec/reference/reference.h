@@ -18,6 +18,10 @@ namespace dbss_ref {
 struct Mesh {
   std::vector<float> positions;
   std::vector<uint32_t> triangles;
+  // Version 1.1 (decoding.md section 3): 1 per crease edge in the canonical
+  // edge order, 1 per corner vertex; both empty when the mesh has none.
+  std::vector<uint8_t> crease;
+  std::vector<uint8_t> corner;
 };
 
 struct Decoded {
@@ -44,6 +48,12 @@ Decoded decode(std::span<const uint8_t> file);
 // without displacement.
 Mesh subdivide(const Mesh& level, std::span<const int32_t> q, float step,
                std::vector<double>* normals = nullptr);
+
+namespace detail {
+// decoding.md section 2 step 6: no crease edge on the boundary (true
+// without creases).
+bool creases_fit(const Mesh& mesh);
+}  // namespace detail
 
 // decoding.md section 8: FNV-1a 64 over the little-endian binary32 bytes of
 // the positions, vertex by vertex, x y z.

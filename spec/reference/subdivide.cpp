@@ -27,8 +27,70 @@ struct Stencil {
   }
 };
 
-bool interior_extraordinary(const Topology& t, uint32_t v) {
-  return !t.boundary[v] && t.valence[v] != 6;
+// Section 3, version 1.1: the creases of a level and the kinds of vertex
+// they make. Without creases every vector is all zero.
+struct Creases {
+  std::vector<uint8_t> edge;   // per edge
+  std::vector<uint8_t> sharp;  // per vertex: crease count >= 1 or corner
+  std::vector<uint8_t> end;    // per vertex: sharp and (corner, count != 2 or boundary)
+};
+
+Creases crease_kinds(const Topology& t, const Mesh& level) {
+  Creases c;
+  c.edge.assign(t.edge_count(), 0);
+  c.sharp.assign(t.vertex_count, 0);
+  c.end.assign(t.vertex_count, 0);
+  if (level.crease.empty() && level.corner.empty()) return c;
+  if (level.crease.size() != t.edge_count() || level.corner.size() != t.vertex_count)
+    throw std::invalid_argument("need one crease flag per edge and one corner flag per vertex");
+  std::vector<uint32_t> count(t.vertex_count, 0);
+  for (uint32_t e = 0; e < t.edge_count(); ++e) {
+    c.edge[e] = level.crease[e] != 0;
+    if (!c.edge[e]) continue;
+    ++count[t.T[t.edge_half[e]]];
+    ++count[t.T[next(t.edge_half[e])]];
+  }
+  for (uint32_t v = 0; v < t.vertex_count; ++v) {
+    c.sharp[v] = count[v] >= 1 || level.corner[v];
+    c.end[v] = c.sharp[v] && (level.corner[v] || count[v] != 2 || t.boundary[v]);
+  }
+  return c;
+}
+
+bool interior_extraordinary(const Topology& t, const Creases& c, uint32_t v) {
+  return !t.boundary[v] && !c.sharp[v] && t.valence[v] != 6;  // "smooth" and not valence 6
+}
+
+// Section 5.4: the other crease neighbour of u, which is not a crease end:
+// the first outgoing half-edge counter-clockwise after x0 (u -> w) whose
+// edge is a crease.
+uint32_t crease_neighbour(const Topology& t, const Creases& c, uint32_t x0) {
+  uint32_t x = t.twin[prev(x0)];
+  while (!c.edge[t.edge_of[x]]) x = t.twin[prev(x)];
+  return t.T[next(x)];
+}
+
+// Section 5.4: crease edge h (u -> w, twin o).
+void crease_rule(const Topology& t, const Creases& c, uint32_t h, Stencil& s) {
+  const uint32_t o = t.twin[h];
+  const uint32_t u = t.T[h], w = t.T[next(h)];
+  if (!c.end[u] && !c.end[w]) {
+    s.add(crease_neighbour(t, c, h), -1.0 / 16);
+    s.add(u, 9.0 / 16);
+    s.add(w, 9.0 / 16);
+    s.add(crease_neighbour(t, c, o), -1.0 / 16);
+  } else if (c.end[u] && !c.end[w]) {
+    s.add(u, 7.0 / 16);
+    s.add(w, 10.0 / 16);
+    s.add(crease_neighbour(t, c, o), -1.0 / 16);
+  } else if (!c.end[u] && c.end[w]) {
+    s.add(crease_neighbour(t, c, h), -1.0 / 16);
+    s.add(u, 10.0 / 16);
+    s.add(w, 7.0 / 16);
+  } else {
+    s.add(u, 1.0 / 2);
+    s.add(w, 1.0 / 2);
+  }
 }
 
 // Section 5.1: boundary edge h (u -> w, no twin), four-point rule.
@@ -45,9 +107,9 @@ void boundary_rule(const Topology& t, uint32_t h, Stencil& s) {
 }
 
 // Section 5.2: the wing across half-edge x; z is the edge end not on x.
-void wing(const Topology& t, uint32_t x, uint32_t z, Stencil& s) {
+void wing(const Topology& t, const Creases& c, uint32_t x, uint32_t z, Stencil& s) {
   const uint32_t y = t.twin[x];
-  if (y != kNone) {
+  if (y != kNone && !c.edge[t.edge_of[x]]) {
     s.add(t.T[prev(y)], -1.0 / 16);
   } else {
     // Reflection T[x] + T[next(x)] - z, as three terms in this order.
@@ -59,17 +121,17 @@ void wing(const Topology& t, uint32_t x, uint32_t z, Stencil& s) {
 
 // Section 5.2: interior edge h (u -> w, twin o), neither end interior
 // extraordinary: eight-point rule with reflected wings where missing.
-void regular_rule(const Topology& t, uint32_t h, Stencil& s) {
+void regular_rule(const Topology& t, const Creases& cr, uint32_t h, Stencil& s) {
   const uint32_t o = t.twin[h];
   const uint32_t u = t.T[h], w = t.T[next(h)], c = t.T[prev(h)], d = t.T[prev(o)];
   s.add(u, 1.0 / 2);
   s.add(w, 1.0 / 2);
   s.add(c, 1.0 / 8);
   s.add(d, 1.0 / 8);
-  wing(t, next(h), u, s);  // w -> c
-  wing(t, prev(h), w, s);  // c -> u
-  wing(t, next(o), w, s);  // u -> d
-  wing(t, prev(o), u, s);  // d -> w
+  wing(t, cr, next(h), u, s);  // w -> c
+  wing(t, cr, prev(h), w, s);  // c -> u
+  wing(t, cr, next(o), w, s);  // u -> d
+  wing(t, cr, prev(o), u, s);  // d -> w
 }
 
 // Section 5.3: the terms of interior extraordinary end v = T[x0], where x0
@@ -86,17 +148,21 @@ void extraordinary_terms(const Topology& t, uint32_t x0, double sigma, Stencil& 
   }
 }
 
-Stencil odd_stencil(const Topology& t, uint32_t h) {
+Stencil odd_stencil(const Topology& t, const Creases& c, uint32_t h) {
   Stencil s;
   const uint32_t o = t.twin[h];
   if (o == kNone) {
     boundary_rule(t, h, s);
     return s;
   }
+  if (c.edge[t.edge_of[h]]) {
+    crease_rule(t, c, h, s);
+    return s;
+  }
   const uint32_t u = t.T[h], w = t.T[next(h)];
-  const bool eu = interior_extraordinary(t, u), ew = interior_extraordinary(t, w);
+  const bool eu = interior_extraordinary(t, c, u), ew = interior_extraordinary(t, c, w);
   if (!eu && !ew) {
-    regular_rule(t, h, s);
+    regular_rule(t, c, h, s);
   } else {
     const double sigma = (eu && ew) ? 0.5 : 1.0;
     if (eu) extraordinary_terms(t, h, sigma, s);  // x0 = h: u -> w
@@ -154,6 +220,8 @@ Mesh subdivide(const Mesh& level, std::span<const int32_t> q, float step, std::v
   const uint32_t F = static_cast<uint32_t>(level.triangles.size() / 3);
   if (!q.empty() && q.size() != E) throw std::invalid_argument("need one q per edge");
 
+  const Creases creases = crease_kinds(t, level);
+
   // Section 4: even vertices keep their positions; edge e gets odd vertex V + e.
   Mesh out;
   out.positions = level.positions;
@@ -161,7 +229,7 @@ Mesh subdivide(const Mesh& level, std::span<const int32_t> q, float step, std::v
 
   // Section 5: every odd position s, before any displacement.
   for (uint32_t e = 0; e < E; ++e)
-    evaluate(odd_stencil(t, t.edge_half[e]), level.positions, &out.positions[3 * (size_t{V} + e)]);
+    evaluate(odd_stencil(t, creases, t.edge_half[e]), level.positions, &out.positions[3 * (size_t{V} + e)]);
 
   // Sections 6 and 7: normals from the undisplaced level l+1 positions, so
   // displaced positions go to a copy until all normals are taken.
@@ -202,8 +270,39 @@ Mesh subdivide(const Mesh& level, std::span<const int32_t> q, float step, std::v
     const uint32_t children[12] = {v0, m0, m2, v1, m1, m0, v2, m2, m1, m0, m1, m2};
     std::copy(children, children + 12, out.triangles.begin() + 12 * size_t{f});
   }
+
+  // Section 4, version 1.1: the halves u-m and m-w of a crease edge are
+  // creases, edges inside a triangle are not; even vertices keep their
+  // corner tags, odd vertices have none.
+  if (!level.crease.empty() || !level.corner.empty()) {
+    Topology child;
+    if (std::string why = build_topology(V + E, out.triangles, child); !why.empty())
+      throw std::invalid_argument("child level: " + why);
+    out.crease.assign(child.edge_count(), 0);
+    for (uint32_t e = 0; e < child.edge_count(); ++e) {
+      const uint32_t a = child.T[child.edge_half[e]], b = child.T[next(child.edge_half[e])];
+      const uint32_t even = std::min(a, b), odd = std::max(a, b);
+      if (even >= V || odd < V) continue;  // a half of a parent edge joins an even and an odd vertex
+      const uint32_t parent = odd - V, h = t.edge_half[parent];
+      if ((t.T[h] == even || t.T[next(h)] == even) && creases.edge[parent]) out.crease[e] = 1;
+    }
+    out.corner.assign(V + E, 0);
+    for (uint32_t v = 0; v < V; ++v) out.corner[v] = level.corner.empty() ? 0 : level.corner[v];
+  }
   return out;
 }
+
+namespace detail {
+bool creases_fit(const Mesh& mesh) {
+  if (mesh.crease.empty()) return true;
+  Topology t;
+  if (!build_topology(static_cast<uint32_t>(mesh.positions.size() / 3), mesh.triangles, t).empty()) return false;
+  if (mesh.crease.size() != t.edge_count()) return false;
+  for (uint32_t e = 0; e < t.edge_count(); ++e)
+    if (mesh.crease[e] && t.twin[t.edge_half[e]] == kNone) return false;
+  return true;
+}
+}  // namespace detail
 
 uint64_t fnv1a64(const Mesh& mesh) {
   uint64_t h = 0xcbf29ce484222325ull;  // FNV-1a 64 offset basis

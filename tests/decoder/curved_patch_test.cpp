@@ -21,7 +21,7 @@ namespace {
 // One level by the spec's reference decoder (spec/reference): q empty for
 // plain subdivision.
 std::vector<float> ref_step(const TriangleMesh& m, std::span<const int32_t> q = {}, float step = 0) {
-  return dbss_ref::subdivide(dbss_ref::Mesh{m.positions, m.triangles}, q, step).positions;
+  return dbss_ref::subdivide(dbss_ref::Mesh{m.positions, m.triangles, {}, {}}, q, step).positions;
 }
 
 // The 5x5 vertex lattice x, y in -2..2, quad (x, y) split along its

@@ -10,11 +10,14 @@
 #include "dbss/decoder/topology.h"
 #include "dbss/encoder/control_mesh_codec.h"
 #include "dbss/format/writer.h"
+#include "../crease_shapes.h"
 
 namespace dbss::test {
 
+// With `crease_degrees` > 0, the control mesh's edges whose dihedral angle
+// is over it are tagged (creases_from_dihedral): a version 1.1 file.
 inline std::vector<uint8_t> build_file(const TriangleMesh& mesh, uint8_t levels, int32_t amplitude, float step,
-                                       uint32_t seed = 1) {
+                                       uint32_t seed = 1, double crease_degrees = 0) {
   auto draco = encode_control_mesh(mesh, {});
   auto decoded = decode_control_mesh(draco.value(), 1 << 24, 1 << 24);
   auto topo = build_topology(static_cast<uint32_t>(decoded.value().vertex_count()), decoded.value().triangles);
@@ -27,6 +30,10 @@ inline std::vector<uint8_t> build_file(const TriangleMesh& mesh, uint8_t levels,
   c.header.bbox_min = {-2, -2, -2};
   c.header.bbox_max = {2, 2, 2};
   c.control_mesh = std::move(draco).value();
+  if (crease_degrees > 0) {
+    c.creases = creases_from_dihedral(decoded.value(), crease_degrees);
+    c.header.version_minor = format::kCreaseVersionMinor;
+  }
   const format::MeshCounts control{c.header.control_vertex_count, c.header.control_edge_count,
                                    c.header.control_triangle_count};
   uint32_t s = seed * 747796405u + 2891336453u;

@@ -29,6 +29,7 @@ struct Golden {
   uint8_t levels;
   int32_t amplitude;
   float step;
+  double crease_degrees = 0;  // > 0: a version 1.1 file with crease tags
 };
 
 std::vector<Golden> goldens() {
@@ -37,6 +38,10 @@ std::vector<Golden> goldens() {
       {"icosahedron-4-levels", test::jitter(test::icosahedron(), 0.1f), 4, 100, 0.02f},
       {"bipyramid9-3-levels", test::jitter(test::bipyramid(9), 0.1f, 9), 3, 80, 0.02f},
       {"bordered-grid-3-levels", test::jitter(test::planar_grid(5, 4), 0.2f), 3, 50, 0.05f},
+      // Version 1.1: crease edges and corners (spec/decoding.md 5.4).
+      {"cube-creases-4-levels", test::cube(), 4, 40, 0.01f, 30},
+      {"roof-creases-3-levels", test::roof_block(4), 3, 40, 0.01f, 30},
+      {"cylinder-creases-3-levels", test::capped_cylinder(16, 3), 3, 40, 0.01f, 30},
   };
 }
 
@@ -77,7 +82,7 @@ TEST_CASE("golden files decode to the recorded bits at every level") {
 
 TEST_CASE("write golden files", "[.write-golden]") {
   for (const Golden& g : goldens()) {
-    const auto bytes = test::build_file(g.mesh, g.levels, g.amplitude, g.step);
+    const auto bytes = test::build_file(g.mesh, g.levels, g.amplitude, g.step, 1, g.crease_degrees);
     REQUIRE(io::write_file_atomic(kDir + g.name + ".dbss", bytes).ok());
     std::ostringstream text;
     for (uint64_t h : level_hashes(bytes)) {

@@ -36,7 +36,7 @@ Chain subdivide(const TriangleMesh& m, int levels, int32_t amplitude = 0) {
   Chain c;
   c.topology.push_back(topology_of(m));
   c.positions.push_back(m.positions);
-  dbss_ref::Mesh mesh{m.positions, m.triangles};
+  dbss_ref::Mesh mesh{m.positions, m.triangles, {}, {}};
   uint32_t s = 12345;
   for (int l = 0; l < levels; ++l) {
     std::vector<int32_t> q;
@@ -57,7 +57,7 @@ Chain subdivide(const TriangleMesh& m, int levels, int32_t amplitude = 0) {
 
 // The reference's plain subdivision of one level.
 std::vector<float> plain_step(const TriangleMesh& m) {
-  return dbss_ref::subdivide(dbss_ref::Mesh{m.positions, m.triangles}, {}, 0.0f).positions;
+  return dbss_ref::subdivide(dbss_ref::Mesh{m.positions, m.triangles, {}, {}}, {}, 0.0f).positions;
 }
 
 }  // namespace
@@ -274,7 +274,7 @@ TEST_CASE("displacement moves odd vertices along the unit normal by q * step") {
   std::vector<int32_t> q(t.edge_count());
   for (size_t i = 0; i < q.size(); ++i) q[i] = static_cast<int32_t>(i % 7) - 3;
   const std::vector<float> flat = plain_step(m);
-  const std::vector<float> moved = dbss_ref::subdivide(dbss_ref::Mesh{m.positions, m.triangles}, q, 0.5f).positions;
+  const std::vector<float> moved = dbss_ref::subdivide(dbss_ref::Mesh{m.positions, m.triangles, {}, {}}, q, 0.5f).positions;
   for (size_t i = 0; i < q.size(); ++i) {
     const float* a = &flat[3 * (t.vertex_count + i)];
     const float* b = &moved[3 * (t.vertex_count + i)];
@@ -316,7 +316,7 @@ TEST_CASE("all-zero displacements give exactly plain butterfly subdivision") {
                                       dbss::test::jitter(dbss::test::planar_grid(6, 5), 0.1f)}) {
     auto r = dbss::LevelRefiner::create(m);
     REQUIRE(r.ok());
-    dbss_ref::Mesh plain{m.positions, m.triangles};
+    dbss_ref::Mesh plain{m.positions, m.triangles, {}, {}};
     std::vector<int32_t> q;
     for (int level = 1; level <= 3; ++level) {
       plain = dbss_ref::subdivide(plain, {}, 0.0f);
@@ -339,7 +339,7 @@ TEST_CASE("LevelRefiner (the encoder's closed loop) places vertices as the refer
       auto r = dbss::LevelRefiner::create(m);
       REQUIRE(r.ok());
       dbss::LevelTopology topo = t.value();
-      dbss_ref::Mesh ref{m.positions, m.triangles};
+      dbss_ref::Mesh ref{m.positions, m.triangles, {}, {}};
       for (int level = 1; level <= 3; ++level) {
         // The chooser sees the reference's undisplaced point and its edge's
         // ends, and picks a q that depends on them.

@@ -34,7 +34,7 @@ std::vector<OddVertex> odd_vertices(const std::vector<float>& positions, const s
   REQUIRE(topo.ok());
   const LevelTopology& t = topo.value();
   std::vector<double> n;
-  const std::vector<float> s = dbss_ref::subdivide(dbss_ref::Mesh{positions, triangles}, {}, 0.0f, &n).positions;
+  const std::vector<float> s = dbss_ref::subdivide(dbss_ref::Mesh{positions, triangles, {}, {}}, {}, 0.0f, &n).positions;
   std::vector<OddVertex> out(t.edge_count());
   for (uint32_t e = 0; e < t.edge_count(); ++e) {
     OddVertex& o = out[e];

@@ -51,7 +51,7 @@ void check_against_openmesh(const dbss::TriangleMesh& base, const char* name, in
     REQUIRE(sub(1));
     sub.detach();
 
-    std::vector<float> next = dbss_ref::subdivide(dbss_ref::Mesh{pos, t.triangles}, {}, 0.0f).positions;
+    std::vector<float> next = dbss_ref::subdivide(dbss_ref::Mesh{pos, t.triangles, {}, {}}, {}, 0.0f).positions;
     // Map each odd vertex (edge a-b) to OpenMesh's new vertex next to both.
     std::vector<int> next_map(t.vertex_count + t.edge_count());
     for (uint32_t v = 0; v < t.vertex_count; ++v) next_map[v] = ours[v];

@@ -120,6 +120,13 @@ struct Known {
   const char* why;
 };
 const Known kKnown[] = {
+    // A HEAD count (V0, E0) that disagrees with the control mesh, in a file
+    // with CREA: the reference decodes the mesh at CTRL (bad_mesh), the
+    // project decodes it after reading the container, whose CREA length
+    // check (sized by V0 and E0) fails first (bad_field). Section 12 says
+    // the mesh is checked "after the container checks of that chunk" but
+    // not whether before the next chunk's.
+    {"bad_mesh", "bad_field", "HEAD counts vs the control mesh, with CREA"},
     // INDX file_size over the 4 GiB limit and not the end of the last entry:
     // the reference applies rule 2 first, the project its limit. Section 12
     // does not order the (advisory) limits against the rules of section 7.
@@ -137,7 +144,7 @@ const Known kKnown[] = {
 TEST_CASE("damaged golden files give the same error code as the project's reader and decoder") {
   size_t cases = 0, errors = 0, known_cases = 0;
   std::vector<std::string> disagreements;
-  for (const char* name : {"bipyramid9-3-levels.dbss", "bordered-grid-3-levels.dbss"}) {
+  for (const char* name : {"bipyramid9-3-levels.dbss", "bordered-grid-3-levels.dbss", "roof-creases-3-levels.dbss"}) {
     const auto good = read_golden(name);
     for (const Damaged& d : damaged_copies(good)) {
       ++cases;

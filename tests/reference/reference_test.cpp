@@ -21,7 +21,8 @@ namespace {
 
 const std::string kDir = std::string(DBSS_SOURCE_DIR) + "/tests/golden/v1/";
 const char* const kGoldens[] = {"torus-4-levels", "icosahedron-4-levels", "bipyramid9-3-levels",
-                                "bordered-grid-3-levels"};
+                                "bordered-grid-3-levels", "cube-creases-4-levels", "roof-creases-3-levels",
+                                "cylinder-creases-3-levels"};
 
 std::vector<uint8_t> read_bytes(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
@@ -38,7 +39,7 @@ std::vector<uint64_t> read_hashes(const std::string& path) {
   return out;
 }
 
-dbss_ref::Mesh to_ref(const dbss::TriangleMesh& m) { return {m.positions, m.triangles}; }
+dbss_ref::Mesh to_ref(const dbss::TriangleMesh& m) { return {m.positions, m.triangles, {}, {}}; }
 
 bool same_bits(std::span<const float> a, std::span<const float> b) {
   return a.size() == b.size() && std::memcmp(a.data(), b.data(), 4 * a.size()) == 0;

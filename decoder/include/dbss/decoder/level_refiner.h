@@ -14,6 +14,7 @@
 #include "dbss/decoder/kernels.h"
 #include "dbss/decoder/mesh.h"
 #include "dbss/decoder/odd_chooser.h"
+#include "dbss/format/container.h"
 #include "dbss/format/status.h"
 
 namespace dbss {
@@ -26,6 +27,10 @@ class LevelRefiner {
  public:
   // Fails with bad_mesh as build_topology() does.
   static Result<LevelRefiner> create(const TriangleMesh& control, const LevelRefinerOptions& options = {});
+  // With the control mesh's crease tags (empty: none); bad_mesh also as
+  // set_creases() gives it.
+  static Result<LevelRefiner> create(const TriangleMesh& control, const format::Creases& creases,
+                                     const LevelRefinerOptions& options = {});
   ~LevelRefiner();
   LevelRefiner(LevelRefiner&&) noexcept;
   LevelRefiner& operator=(LevelRefiner&&) noexcept;

@@ -28,15 +28,26 @@ struct LevelTopology {
   std::vector<uint32_t> edge_half;
   // Per vertex: an outgoing half-edge from which a counter-clockwise walk
   // (h -> twin[prev(h)]) visits its whole fan (on the boundary, the outgoing
-  // boundary half-edge), the number of neighbours, and whether it lies on the
-  // boundary.
+  // boundary half-edge), the number of neighbours, and its kind: bits
+  // kVertexBoundary, kVertexSharp and kVertexCreaseEnd below (0: a smooth
+  // interior vertex).
   std::vector<uint32_t> vertex_start;
   std::vector<uint16_t> vertex_valence;
   std::vector<uint8_t> vertex_boundary;
+  // Per edge, 1 on a crease (spec/decoding.md section 5.4); empty when the
+  // level has no crease, which is how every 1.0 file decodes.
+  std::vector<uint8_t> edge_crease;
 
   uint32_t triangle_count() const noexcept { return static_cast<uint32_t>(triangles.size() / 3); }
   uint32_t edge_count() const noexcept { return static_cast<uint32_t>(edge_half.size()); }
 };
+
+// Bits of LevelTopology::vertex_boundary.  A vertex that is not 0 never
+// takes the regular 8-point fast path nor the extraordinary rule: a crease
+// is a boundary inside the mesh, so the test of the hot loop stays one byte.
+inline constexpr uint8_t kVertexBoundary = 1;   // on the mesh's boundary
+inline constexpr uint8_t kVertexSharp = 2;      // on a crease edge, or tagged corner
+inline constexpr uint8_t kVertexCreaseEnd = 4;  // a crease polyline stops here (spec 5.4)
 
 inline uint32_t next_half(uint32_t h) noexcept { return h % 3 == 2 ? h - 2 : h + 1; }
 inline uint32_t prev_half(uint32_t h) noexcept { return h % 3 == 0 ? h + 2 : h - 1; }
@@ -50,6 +61,13 @@ inline constexpr uint32_t kMaxValence = 64;
 // triangles or inconsistent orientation, vertices whose triangles form more
 // than one fan, unused vertices and valences over kMaxValence.
 Result<LevelTopology> build_topology(uint32_t vertex_count, std::span<const uint32_t> triangles);
+
+// Marks the control mesh's crease edges (edge[e] != 0, canonical edge
+// order, edge.size() == edge_count()) and corner vertices (corner[v] != 0,
+// corner.size() == vertex_count): sets edge_crease and the sharp and
+// crease-end bits (spec/decoding.md section 5.4).  bad_mesh, naming it, if
+// a crease edge lies on the boundary or a size is wrong.  Both empty: nothing.
+Status set_creases(LevelTopology& t, std::span<const uint8_t> edge, std::span<const uint8_t> corner);
 
 // Topology of the next level from the regular 1-to-4 split: odd vertex of
 // edge e is vertex parent.vertex_count + e; triangle f becomes

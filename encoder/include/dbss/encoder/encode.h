@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "dbss/decoder/mesh.h"
+#include "dbss/encoder/creases.h"
 #include "dbss/encoder/control_mesh.h"
 #include "dbss/encoder/levels.h"
 #include "dbss/encoder/outliers.h"
@@ -35,6 +36,7 @@ uint32_t auto_levels(const format::MeshCounts& control, size_t points);
 struct EncodeOptions {
   OutlierOptions outliers;  // removed before carving unless outliers.enabled is false
   ControlMeshOptions control;
+  CreaseOptions creases;  // sharp features: tags and snapping (angle <= 0: off, a 1.0 file)
   int control_bits = 0;  // Draco position bits of the control mesh, 8..30; 0: from the step (control_bits_for_step)
   uint32_t levels = 3;    // displacement levels, 0..kMaxLevelsInFormat, or kAutoLevels
   // Quantization: `step` (model units) when > 0, else derived from `error`
@@ -56,6 +58,7 @@ struct EncodeTimes {
 struct Encoding {
   PointCloud points;              // the points the surface was built from (after outlier removal)
   OutlierStats outliers;
+  CreaseStats creases;            // found on the control mesh before Draco
   ControlMeshStages stages;
   TriangleMesh control;           // the Draco-decoded control mesh the file holds
   format::FileContents contents;  // what the file holds

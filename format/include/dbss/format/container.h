@@ -54,6 +54,10 @@ inline constexpr ChunkType kIndx{'I', 'N', 'D', 'X'};  // table of contents
 inline constexpr ChunkType kCtrl{'C', 'T', 'R', 'L'};  // control mesh
 inline constexpr ChunkType kLevl{'L', 'E', 'V', 'L'};  // one subdivision level
 inline constexpr ChunkType kMeta{'m', 'e', 't', 'a'};  // key/value metadata
+inline constexpr ChunkType kCrea{'C', 'R', 'E', 'A'};  // crease tags (version 1.1)
+
+// The minor version a file with a CREA chunk declares (and needs).
+inline constexpr uint16_t kCreaseVersionMinor = 1;
 
 struct Header {
   uint16_t version_major = kVersionMajor;
@@ -106,6 +110,16 @@ struct Level {
   float step = 0;                  // Δ_l in model units, finite and > 0
   std::vector<int32_t> q;          // one per odd vertex, in the spec's odd-vertex order
   friend bool operator==(const Level&, const Level&) = default;
+};
+
+// Crease tags of the control mesh (spec section 10a), one byte per item,
+// 0 or 1: edge[e] for the control mesh's edges in canonical edge order,
+// corner[v] per control vertex.  Both empty: no creases (a 1.0 file).
+struct Creases {
+  std::vector<uint8_t> edge;
+  std::vector<uint8_t> corner;
+  bool empty() const noexcept { return edge.empty() && corner.empty(); }
+  friend bool operator==(const Creases&, const Creases&) = default;
 };
 
 struct MetaEntry {

@@ -76,6 +76,10 @@ class Reader {
   // The control mesh codec's bytes; valid while the reader lives.
   std::span<const uint8_t> control_payload() const noexcept { return control_payload_; }
 
+  // The crease tags, once a CREA chunk is verified (version 1.1); until
+  // then, and in files without one, empty.
+  bool has_creases() const noexcept { return has_creases_; }
+  const Creases& creases() const noexcept { return creases_; }
   // Levels 1..levels_ready() are verified and decompressed.
   uint32_t levels_ready() const noexcept { return static_cast<uint32_t>(levels_.size()); }
   // Level `index` in 1..levels_ready() (std::out_of_range otherwise: a
@@ -106,6 +110,7 @@ class Reader {
   Status on_control();
   Status on_level();
   Status on_meta();
+  Status on_creases();
   std::string chunk_name() const;
 
   Limits limits_;
@@ -135,6 +140,8 @@ class Reader {
   bool has_control_ = false;
   ControlCodec control_codec_ = ControlCodec::draco;
   std::vector<uint8_t> control_payload_;
+  bool has_creases_ = false;
+  Creases creases_;
   std::vector<Level> levels_;
   std::vector<MetaEntry> metadata_;
   size_t ancillary_skipped_ = 0;

@@ -27,6 +27,9 @@ struct FileContents {
   // bytes, and serialize() writes them instead of compressing again).
   std::vector<std::vector<uint8_t>> level_data;
   std::vector<MetaEntry> metadata;    // one 'meta' chunk after the last level when not empty
+  // Crease tags: empty, or a CREA chunk right after CTRL; then
+  // header.version_minor must be kCreaseVersionMinor or more.
+  Creases creases;
 };
 
 struct WriteOptions {
@@ -49,6 +52,9 @@ Result<std::vector<uint8_t>> encode_level(const Level& level, int zstd_level);
 // The data bytes of a CTRL chunk.
 std::vector<uint8_t> encode_control(ControlCodec codec, std::span<const uint8_t> payload);
 
+// The data bytes of a CREA chunk for a control mesh of `edges` edges and
+// `vertices` vertices; fails if the sizes differ or no bit is set.
+Result<std::vector<uint8_t>> encode_creases(const Creases& creases, uint32_t edges, uint32_t vertices);
 // The data bytes of a 'meta' chunk; fails on an empty or over-long key.
 Result<std::vector<uint8_t>> encode_metadata(const std::vector<MetaEntry>& entries);
 

@@ -1,0 +1,141 @@
+// Creases against no creases: each shape (built-in cube, capped cylinder
+// and ridge-roof block, or a mesh file such as the libcgal-demo fandisk) is
+// sampled to points (fixed seed, area-uniform, as shape_bench does),
+// encoded with --crease-angle off and on, and every level is compared with
+// the true mesh.  Prints the feature length found against the true one
+// (edges of the true mesh whose dihedral angle is over the threshold), the
+// bytes the tags cost, and per level the two-sided mean and the Hausdorff
+// distance over the true mesh's diagonal, off and on.
+//
+// usage: crease_bench [--points N] [--levels L] [--angle DEG] [--samples S] [--skip-absent] [--no-shape] SHAPE...
+//   --no-shape: without the control mesh's shaping pass (edge flips, relaxation)
+//   SHAPE: cube, cylinder, roof, or a mesh file (absent with --skip-absent: exit 77 unless CI=true)
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "crease_shapes.h"
+#include "dbss/encoder/encode.h"
+#include "dbss/encoder/point_input.h"
+#include "dbss/io/geometry_files.h"
+#include "dbss/measure/mesh_distance.h"
+#include "dbss/measure/surface_samples.h"
+
+namespace {
+
+double diagonal(const dbss::TriangleMesh& m) {
+  double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+  for (size_t i = 0; i < m.positions.size(); ++i)
+    lo[i % 3] = std::min(lo[i % 3], double{m.positions[i]}), hi[i % 3] = std::max(hi[i % 3], double{m.positions[i]});
+  return std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) + (hi[2] - lo[2]) * (hi[2] - lo[2]));
+}
+
+// Total length of the tagged edges of `m`.
+double crease_length(const dbss::TriangleMesh& m, const dbss::format::Creases& c) {
+  if (c.empty()) return 0;
+  auto t = dbss::build_topology(static_cast<uint32_t>(m.vertex_count()), m.triangles).value();
+  double sum = 0;
+  for (uint32_t e = 0; e < t.edge_count(); ++e) {
+    if (!c.edge[e]) continue;
+    const uint32_t h = t.edge_half[e], u = t.triangles[h], w = t.triangles[dbss::next_half(h)];
+    double d2 = 0;
+    for (int k = 0; k < 3; ++k) d2 += std::pow(double(m.positions[3 * u + k]) - m.positions[3 * w + k], 2);
+    sum += std::sqrt(d2);
+  }
+  return sum;
+}
+
+struct Run {
+  std::vector<size_t> bytes;
+  std::vector<double> mean, hausdorff;
+  dbss::CreaseStats stats;
+  double length = 0;
+  size_t tag_bytes = 0;
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  size_t points = 40000, samples = 200000;
+  uint32_t levels = 4;
+  double angle = 30;
+  std::vector<std::string> shapes;
+  bool skip_absent = false, shaping = true;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "--points" && i + 1 < argc) points = std::strtoull(argv[++i], nullptr, 10);
+    else if (a == "--levels" && i + 1 < argc) levels = static_cast<uint32_t>(std::atoi(argv[++i]));
+    else if (a == "--angle" && i + 1 < argc) angle = std::atof(argv[++i]);
+    else if (a == "--samples" && i + 1 < argc) samples = std::strtoull(argv[++i], nullptr, 10);
+    else if (a == "--skip-absent") skip_absent = true;
+    else if (a == "--no-shape") shaping = false;
+    else if (!a.empty() && a[0] == '-') return std::fprintf(stderr, "crease_bench: unknown option %s\n", a.c_str()), 1;
+    else shapes.push_back(a);
+  }
+  if (shapes.empty() || points < 100 || levels > 6 || samples < 2 || !(angle > 0))
+    return std::fprintf(stderr, "usage: crease_bench [--points N>=100] [--levels 0..6] [--angle DEG] SHAPE...\n"), 1;
+  const char* ci = std::getenv("CI");
+  std::printf("%zu points per shape, crease angle %g; error: two-sided mean / Hausdorff distance to the true mesh "
+              "over its diagonal\n\n",
+              points, angle);
+  for (const std::string& name : shapes) {
+    dbss::TriangleMesh truth;
+    if (name == "cube") truth = dbss::test::cube();
+    else if (name == "cylinder") truth = dbss::test::capped_cylinder(64, 9);
+    else if (name == "roof") truth = dbss::test::roof_block(8);
+    else {
+      if (!std::filesystem::exists(name)) {
+        if (skip_absent && !(ci != nullptr && std::string(ci) == "true"))
+          return std::fprintf(stderr, "crease_bench: %s absent (scripts/fetch-test-data.sh): skipped\n", name.c_str()), 77;
+        return std::fprintf(stderr, "crease_bench: %s: no such file\n", name.c_str()), 1;
+      }
+      auto mesh = dbss::read_mesh(name);
+      if (!mesh.ok()) return std::fprintf(stderr, "crease_bench: %s\n", mesh.status().to_string().c_str()), 1;
+      truth = std::move(mesh).value();
+    }
+    const double diag = diagonal(truth);
+    const std::string shape = std::filesystem::path(name).stem().string();
+    const double true_length = crease_length(truth, dbss::test::creases_from_dihedral(truth, angle));
+    const std::vector<double> p = dbss::sample_surface(truth, points, 1);
+    dbss::PointCloud pc;
+    pc.xyz.assign(p.begin(), p.end());
+    Run runs[2];
+    for (int on = 0; on < 2; ++on) {
+      dbss::EncodeOptions eo;
+      eo.levels = levels;
+      eo.creases.angle_degrees = on ? angle : 0;
+      eo.control.shape.enabled = shaping;
+      auto e = dbss::encode_points(pc, eo);
+      if (!e.ok()) return std::fprintf(stderr, "crease_bench: %s: %s\n", shape.c_str(), e.status().to_string().c_str()), 1;
+      const dbss::Encoding& enc = e.value();
+      runs[on].stats = enc.creases;
+      runs[on].length = crease_length(enc.control, enc.contents.creases);
+      for (const auto& t : enc.toc)
+        if (t.type == dbss::format::kCrea) runs[on].tag_bytes = t.length + 12 + 16;  // data, frame, INDX entry
+      for (uint32_t l = 0; l <= enc.level_count; ++l) {
+        const dbss::TriangleMesh m{enc.levels.positions[l], enc.levels.triangles[l]};
+        const dbss::MeshDistance d = dbss::mesh_distance(m, truth, {samples, 1, 2});
+        runs[on].bytes.push_back(dbss::prefix_bytes(enc, l));
+        runs[on].mean.push_back(d.mean() / diag);
+        runs[on].hausdorff.push_back(d.max() / diag);
+      }
+    }
+    const Run& r = runs[1];
+    std::printf("### %s\n", shape.c_str());
+    std::printf("creases: %zu edges of %zu tested (%zu gaps closed), %zu corners, %zu darts, %zu vertices snapped (largest move %.2e of the "
+                "diagonal); feature length found %.3f, true %.3f (diagonals); tags %zu bytes\n\n",
+                r.stats.creases, r.stats.edges_tested, r.stats.gaps_closed, r.stats.corners, r.stats.darts, r.stats.snapped, r.stats.max_snap / diag,
+                r.length / diag, true_length / diag, r.tag_bytes);
+    std::printf("| level | bytes off | bytes on | error off | error on | Hausdorff off | Hausdorff on |\n");
+    std::printf("|---|---|---|---|---|---|---|\n");
+    for (size_t l = 0; l < std::min(runs[0].bytes.size(), runs[1].bytes.size()); ++l)
+      std::printf("| %zu | %zu | %zu | %.3e | %.3e | %.2f%% | %.2f%% |\n", l, runs[0].bytes[l], runs[1].bytes[l],
+                  runs[0].mean[l], runs[1].mean[l], 100 * runs[0].hausdorff[l], 100 * runs[1].hausdorff[l]);
+    std::printf("\n");
+    std::fflush(stdout);
+  }
+  return 0;
+}

@@ -1,0 +1,60 @@
+// Sharp features of the surface from the points: which control-mesh edges
+// are creases (format 1.1 tags, spec/dbss-format.md section 10a), and their
+// vertices snapped onto the feature lines before sampling.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+#include "dbss/decoder/mesh.h"
+#include "dbss/encoder/point_index.h"
+#include "dbss/format/container.h"
+
+namespace dbss {
+
+struct CreaseOptions {
+  // Smallest angle between the two sides' planes, degrees; <= 0: off (no
+  // tag is found and the mesh is not touched, so the file is a 1.0 file).
+  // Off by default: measured (bench/crease_bench), tagging the edges of
+  // today's control mesh does not yet lower the error, because few of its
+  // edges run along the features (most tagged edges are isolated, darts at
+  // both ends); it needs a control mesh whose edges follow them first.
+  double angle_degrees = 0;
+  // Each side's RMS distance from its plane, relative to the neighbourhood's
+  // radius, must stay under this: a crease has flat sides near it, a smooth
+  // bend of the same angle does not (its halves deviate by about angle/16).
+  double flatness = 0.02;
+  size_t min_side_points = 8;  // per side, else the edge is not a crease
+  // The feature runs along the edge: the planes' line within acos(parallel)
+  // of it, and each end within reach * its length of both planes.
+  double parallel = 0.94;  // cos 20 degrees
+  double reach = 0.3;
+};
+
+struct CreaseStats {
+  size_t edges_tested = 0;  // interior edges with enough points
+  size_t creases = 0, corners = 0;
+  size_t darts = 0;        // vertices where a crease ends (one crease edge)
+  size_t gaps_closed = 0;  // edges tagged because they join two crease ends in line
+  size_t snapped = 0;      // vertices moved onto a feature line or corner
+  double max_snap = 0;     // largest move, model units
+};
+
+// Tests every interior edge of `mesh` (a closed or open manifold control
+// mesh): the points within 0.6 edge lengths of its midpoint are split by
+// side and fitted by one plane per side; the edge is a crease when the two
+// planes meet at more than the angle and both sides are flat.  A vertex
+// with three or more crease edges is tagged corner.  The vertices of crease
+// edges move to the least-squares point of their sides' planes (onto the
+// feature line; to the corner where three planes meet), by at most a third
+// of their shortest edge.  Returns the tags in `mesh`'s canonical edge
+// order (empty when none is found or the option is off).
+format::Creases find_creases(TriangleMesh& mesh, const PointIndex& points, const CreaseOptions& options,
+                             CreaseStats* stats = nullptr);
+
+// `from`'s tags for `to`, the same mesh after a codec renumbered vertices
+// and triangles and rounded the positions (Draco): vertices are matched by
+// nearest position, edges by their matched ends.  Empty if `from` has none.
+format::Creases transfer_creases(const TriangleMesh& from, const format::Creases& tags, const TriangleMesh& to);
+
+}  // namespace dbss

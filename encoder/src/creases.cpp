@@ -1,0 +1,257 @@
+#include "dbss/encoder/creases.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <unordered_set>
+
+#include "dbss/decoder/topology.h"
+#include "dbss/encoder/point_distances.h"
+
+namespace dbss {
+
+namespace {
+
+using V3 = std::array<double, 3>;
+
+V3 at(const std::vector<float>& p, uint32_t v) { return {p[3 * size_t{v}], p[3 * size_t{v} + 1], p[3 * size_t{v} + 2]}; }
+V3 sub(const V3& a, const V3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+double dot(const V3& a, const V3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+double norm(const V3& a) { return std::sqrt(dot(a, a)); }
+
+// The component of d across the edge direction e (unit).
+V3 across(const V3& d, const V3& e) {
+  const double t = dot(d, e);
+  return {d[0] - t * e[0], d[1] - t * e[1], d[2] - t * e[2]};
+}
+
+struct Plane {
+  V3 point, normal;
+};
+
+// RMS distance of the points from their plane.
+double rms(const PointPlane& p) { return std::sqrt(std::max(0.0, p.variance[0])); }
+
+}  // namespace
+
+format::Creases find_creases(TriangleMesh& mesh, const PointIndex& points, const CreaseOptions& o, CreaseStats* stats) {
+  CreaseStats st;
+  format::Creases out;
+  if (!(o.angle_degrees > 0)) {
+    if (stats) *stats = st;
+    return out;
+  }
+  auto built = build_topology(static_cast<uint32_t>(mesh.vertex_count()), mesh.triangles);
+  if (!built.ok()) return out;
+  const LevelTopology& t = built.value();
+  const PointCloud& pc = points.points();
+  const double min_cos = std::cos(o.angle_degrees * 3.14159265358979323846 / 180);
+  std::vector<uint8_t> crease(t.edge_count(), 0);
+  std::vector<std::vector<Plane>> planes(t.vertex_count);  // the sides' planes at each crease vertex
+  std::vector<uint32_t> near, side[2];
+  for (uint32_t e = 0; e < t.edge_count(); ++e) {
+    const uint32_t h = t.edge_half[e], tw = t.twin[h];
+    if (tw == kNoHalfEdge) continue;
+    const uint32_t u = t.triangles[h], w = t.triangles[next_half(h)];
+    const V3 pu = at(mesh.positions, u), pw = at(mesh.positions, w);
+    const V3 pc1 = at(mesh.positions, t.triangles[prev_half(h)]), pd = at(mesh.positions, t.triangles[prev_half(tw)]);
+    const double len = norm(sub(pw, pu));
+    if (!(len > 0)) continue;
+    const V3 dir = {(pw[0] - pu[0]) / len, (pw[1] - pu[1]) / len, (pw[2] - pu[2]) / len};
+    const double radius = 0.6 * len;
+    const float mid[3] = {float(0.5 * (pu[0] + pw[0])), float(0.5 * (pu[1] + pw[1])), float(0.5 * (pu[2] + pw[2]))};
+    points.within(mid, float(radius), near);
+    if (near.size() < 2 * o.min_side_points) continue;
+    // First split: toward the third corner of either triangle.
+    V3 t1 = across(sub(pc1, pu), dir), t2 = across(sub(pd, pu), dir);
+    const double l1 = norm(t1), l2 = norm(t2);
+    if (!(l1 > 0) || !(l2 > 0)) continue;
+    for (int k = 0; k < 3; ++k) t1[k] /= l1, t2[k] /= l2;
+    side[0].clear(), side[1].clear();
+    for (uint32_t i : near) {
+      const V3 q = across(sub(at(pc.xyz, i), pu), dir);
+      side[dot(q, t1) >= dot(q, t2) ? 0 : 1].push_back(i);
+    }
+    if (side[0].size() < o.min_side_points || side[1].size() < o.min_side_points) continue;
+    // Then twice: each point to the plane it is nearer, planes refitted.
+    PointPlane fit[2];
+    bool ok = true;
+    for (int round = 0; round < 3 && ok; ++round) {
+      fit[0] = fit_plane(pc, side[0].data(), side[0].size());
+      fit[1] = fit_plane(pc, side[1].data(), side[1].size());
+      if (round == 2) break;
+      side[0].clear(), side[1].clear();
+      for (uint32_t i : near) {
+        const V3 p = at(pc.xyz, i);
+        const double d0 = std::abs(dot(sub(p, V3(fit[0].point)), V3(fit[0].normal)));
+        const double d1 = std::abs(dot(sub(p, V3(fit[1].point)), V3(fit[1].normal)));
+        side[d0 <= d1 ? 0 : 1].push_back(i);
+      }
+      ok = side[0].size() >= o.min_side_points && side[1].size() >= o.min_side_points;
+    }
+    if (!ok) continue;
+    ++st.edges_tested;
+    const double c = std::abs(dot(V3(fit[0].normal), V3(fit[1].normal)));
+    if (c > min_cos) continue;  // the planes meet at less than the angle
+    if (rms(fit[0]) > o.flatness * radius || rms(fit[1]) > o.flatness * radius) continue;  // a bend, not a crease
+    // The feature must run along this edge, not beside it (an edge of a
+    // flat face next to a crease sees two planes too): the planes' line
+    // parallel to the edge and both ends near both planes.
+    const V3 n0 = V3(fit[0].normal), n1 = V3(fit[1].normal);
+    V3 line = {n0[1] * n1[2] - n0[2] * n1[1], n0[2] * n1[0] - n0[0] * n1[2], n0[0] * n1[1] - n0[1] * n1[0]};
+    const double ll = norm(line);
+    if (!(ll > 0) || std::abs(dot(line, dir)) < o.parallel * ll) continue;
+    bool along = true;
+    for (const V3& end : {pu, pw})
+      for (int s = 0; s < 2; ++s)
+        along = along && std::abs(dot(sub(end, V3(fit[s].point)), V3(fit[s].normal))) <= o.reach * len;
+    if (!along) continue;
+    crease[e] = 1;
+    for (int s = 0; s < 2; ++s) {
+      const Plane p{V3(fit[s].point), V3(fit[s].normal)};
+      planes[u].push_back(p), planes[w].push_back(p);
+    }
+  }
+  std::vector<uint32_t> count(t.vertex_count, 0);
+  const auto count_creases = [&] {
+    std::fill(count.begin(), count.end(), 0);
+    for (uint32_t e = 0; e < t.edge_count(); ++e)
+      if (crease[e]) ++count[t.triangles[t.edge_half[e]]], ++count[t.triangles[next_half(t.edge_half[e])]];
+  };
+  count_creases();
+  // Close gaps: an edge between two crease ends (one crease edge each) that
+  // continues both their creases (within 35 degrees) is a crease the test
+  // missed (too few points on one side, a side not flat at a corner); left
+  // open, the polyline would stop there and the edge be rounded.
+  {
+    std::vector<V3> end_dir(t.vertex_count, V3{0, 0, 0});  // from the other end of its one crease edge towards it
+    for (uint32_t e = 0; e < t.edge_count(); ++e) {
+      if (!crease[e]) continue;
+      const uint32_t h = t.edge_half[e], u = t.triangles[h], w = t.triangles[next_half(h)];
+      const V3 d = sub(at(mesh.positions, w), at(mesh.positions, u));
+      const double l = norm(d);
+      if (count[w] == 1) end_dir[w] = {d[0] / l, d[1] / l, d[2] / l};
+      if (count[u] == 1) end_dir[u] = {-d[0] / l, -d[1] / l, -d[2] / l};
+    }
+    for (uint32_t e = 0; e < t.edge_count(); ++e) {
+      const uint32_t h = t.edge_half[e], u = t.triangles[h], w = t.triangles[next_half(h)];
+      if (crease[e] || t.twin[h] == kNoHalfEdge || count[u] != 1 || count[w] != 1) continue;
+      const V3 d = sub(at(mesh.positions, w), at(mesh.positions, u));
+      const double l = norm(d);
+      const V3 uw = {d[0] / l, d[1] / l, d[2] / l};
+      if (dot(end_dir[u], uw) > 0.82 && -dot(end_dir[w], uw) > 0.82) {
+        crease[e] = 1;
+        ++st.gaps_closed;
+        // The neighbouring crease edges' planes serve this edge's vertices.
+      }
+    }
+    count_creases();
+  }
+  for (uint32_t e = 0; e < t.edge_count(); ++e) st.creases += crease[e];
+  for (uint32_t v = 0; v < t.vertex_count; ++v) st.darts += count[v] == 1;
+  if (st.creases == 0) {
+    if (stats) *stats = st;
+    return out;
+  }
+  out.edge = crease;
+  out.corner.assign(t.vertex_count, 0);
+  // Shortest edge at each vertex: bounds its move.
+  std::vector<double> shortest(t.vertex_count, INFINITY);
+  for (uint32_t e = 0; e < t.edge_count(); ++e) {
+    const uint32_t h = t.edge_half[e], u = t.triangles[h], w = t.triangles[next_half(h)];
+    const double l = norm(sub(at(mesh.positions, u), at(mesh.positions, w)));
+    shortest[u] = std::min(shortest[u], l), shortest[w] = std::min(shortest[w], l);
+  }
+  std::vector<float> moved = mesh.positions;
+  for (uint32_t v = 0; v < t.vertex_count; ++v) {
+    if (count[v] >= 3) out.corner[v] = 1, ++st.corners;
+    if (planes[v].empty()) continue;
+    // Least squares over the planes, with a weak pull to where the vertex
+    // is (it fixes the position along a feature line, and regularizes
+    // nearly parallel planes): (sum n n^T + lambda I) x = sum n (n.c) + lambda v.
+    const V3 pv = at(mesh.positions, v);
+    const double lambda = 1e-2;
+    double a[3][4] = {};
+    for (int i = 0; i < 3; ++i) a[i][i] = lambda, a[i][3] = lambda * pv[i];
+    for (const Plane& p : planes[v]) {
+      const double d = dot(p.normal, p.point);
+      for (int i = 0; i < 3; ++i) {
+        for (int j = 0; j < 3; ++j) a[i][j] += p.normal[i] * p.normal[j];
+        a[i][3] += p.normal[i] * d;
+      }
+    }
+    // Gaussian elimination with partial pivoting (the matrix is positive definite).
+    for (int c = 0; c < 3; ++c) {
+      int piv = c;
+      for (int r = c + 1; r < 3; ++r)
+        if (std::abs(a[r][c]) > std::abs(a[piv][c])) piv = r;
+      for (int k = 0; k < 4; ++k) std::swap(a[c][k], a[piv][k]);
+      for (int r = 0; r < 3; ++r) {
+        if (r == c) continue;
+        const double f = a[r][c] / a[c][c];
+        for (int k = c; k < 4; ++k) a[r][k] -= f * a[c][k];
+      }
+    }
+    const V3 x = {a[0][3] / a[0][0], a[1][3] / a[1][1], a[2][3] / a[2][2]};
+    const double move = norm(sub(x, pv));
+    if (!std::isfinite(move) || move > shortest[v] / 2) continue;
+    for (int k = 0; k < 3; ++k) moved[3 * size_t{v} + k] = static_cast<float>(x[k]);
+    ++st.snapped;
+    st.max_snap = std::max(st.max_snap, move);
+  }
+  mesh.positions = std::move(moved);
+  if (stats) *stats = st;
+  return out;
+}
+
+format::Creases transfer_creases(const TriangleMesh& from, const format::Creases& tags, const TriangleMesh& to) {
+  format::Creases out;
+  if (tags.empty()) return out;
+  // Nearest vertex of `from` for each of `to`'s, by a sweep over x.
+  const uint32_t n = static_cast<uint32_t>(from.vertex_count());
+  std::vector<uint32_t> order(n);
+  for (uint32_t i = 0; i < n; ++i) order[i] = i;
+  std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) { return from.positions[3 * size_t{a}] < from.positions[3 * size_t{b}]; });
+  std::vector<uint32_t> match(to.vertex_count());
+  for (uint32_t v = 0; v < to.vertex_count(); ++v) {
+    const V3 p = at(to.positions, v);
+    const auto x_of = [&](uint32_t i) { return double(from.positions[3 * size_t{i}]); };
+    size_t start = std::lower_bound(order.begin(), order.end(), p[0], [&](uint32_t i, double x) { return x_of(i) < x; }) - order.begin();
+    double best = INFINITY;
+    uint32_t best_i = 0;
+    for (size_t k = start; k < n && x_of(order[k]) - p[0] < std::sqrt(best); ++k) {
+      const double d = dot(sub(at(from.positions, order[k]), p), sub(at(from.positions, order[k]), p));
+      if (d < best) best = d, best_i = order[k];
+    }
+    for (size_t k = start; k-- > 0 && p[0] - x_of(order[k]) < std::sqrt(best);) {
+      const double d = dot(sub(at(from.positions, order[k]), p), sub(at(from.positions, order[k]), p));
+      if (d < best) best = d, best_i = order[k];
+    }
+    match[v] = best_i;
+  }
+  auto ft = build_topology(n, from.triangles);
+  auto tt = build_topology(static_cast<uint32_t>(to.vertex_count()), to.triangles);
+  if (!ft.ok() || !tt.ok()) return out;
+  std::unordered_set<uint64_t> keys;
+  const auto key = [](uint64_t a, uint64_t b) { return std::min(a, b) << 32 | std::max(a, b); };
+  for (uint32_t e = 0; e < ft.value().edge_count(); ++e)
+    if (tags.edge[e]) {
+      const uint32_t h = ft.value().edge_half[e];
+      keys.insert(key(ft.value().triangles[h], ft.value().triangles[next_half(h)]));
+    }
+  const LevelTopology& t = tt.value();
+  out.edge.assign(t.edge_count(), 0);
+  out.corner.assign(t.vertex_count, 0);
+  bool any = false;
+  for (uint32_t e = 0; e < t.edge_count(); ++e) {
+    const uint32_t h = t.edge_half[e];
+    if (t.twin[h] != kNoHalfEdge && keys.count(key(match[t.triangles[h]], match[t.triangles[next_half(h)]])))
+      out.edge[e] = 1, any = true;
+  }
+  for (uint32_t v = 0; v < t.vertex_count; ++v)
+    if (tags.corner[match[v]]) out.corner[v] = 1, any = true;
+  if (!any) return {};
+  return out;
+}
+
+}  // namespace dbss
