@@ -35,13 +35,6 @@ constexpr double kSheetMiss = 0.12;
 // Share of the area bridged above which a leak at a finer grid than the
 // search's closed one is not worth it (the bunny's base: 0.3%).
 constexpr double kMaxLeakBridged = 0.02;
-// Rings of triangles added round a closed shell's unsupported patches when
-// they are cut out to look for tube ends the carving capped.  On tori of
-// genus 1-3 with 10% and 15% holes from six directions (closed, 4,000 and
-// 9,000 points): without the rejoining 26 of 72 came out with a handle
-// lost; with 2 rings 19 (but two tubes were joined that should not have
-// been, one handle too many), with 4 rings 21 and none too many.
-constexpr int kCapGrow = 4;
 // Boundary loops shorter than this many cells are closed even in open mode.
 constexpr double kPinhole = 8;
 // Under `auto`, holes are bridged when the patches would cover less than
@@ -242,40 +235,6 @@ bool build_sheet(ControlMeshStages& s, const PointIndex& index, const ControlMes
 }
 }  // namespace
 
-namespace {
-
-// A carving that does not leak still loses a handle where the scan missed
-// a band right round a tube: the gap is carved away with the air and each
-// cut end capped (a double torus with a 10-15% hole from some directions).
-// The caps are the shrink-wrapped shell's patches with no point near; cut
-// out, their loops are closed again by fill_holes, which joins two that face
-// each other by a tube.  The shell is replaced only when a tube was built
-// and the result is a closed manifold with the shell's components and more
-// handles; otherwise it stays as it was.  Returns the tubes built.
-size_t rejoin_cut_tubes(ControlMeshStages& s, const PointIndex& index) {
-  TriangleMesh cut = s.wrapped;
-  const double spacing = point_spacing(index, 1, 0.5);
-  // Shrink-wrapping pulls a cap toward the points round its rim, so its
-  // unsupported middle comes apart in pieces: rings round them join the
-  // pieces of one cap into one hole.
-  if (trim_unsupported(cut, index, std::max(2 * spacing, 0.75 * s.cells.cell), kCapGrow) == 0) return 0;
-  const MeshInfo cut_info = mesh_info(cut);
-  if (!cut_info.manifold || cut_info.boundary_loops < 2) return 0;
-  TriangleMesh filled = cut;
-  const HoleFill fill = fill_holes(filled, s.cells.cell, 1e300, /*bridge=*/true);
-  if (fill.bridges == 0) return 0;
-  const MeshInfo info = mesh_info(filled);
-  if (!info.manifold || !info.closed || info.components != s.shell_info.components || info.genus <= s.shell_info.genus)
-    return 0;
-  s.bridged_area = fill.area / std::max(1e-300, mesh_area(filled));
-  s.surface_reason += "; " + std::to_string(fill.bridges) + " tube(s) the scan cut through and the carving capped, " +
-                      "rejoined (" + fmt("%.1f", 100 * s.bridged_area) + "% of the area bridged)";
-  s.wrapped = std::move(filled);
-  return fill.bridges;
-}
-
-}  // namespace
-
 const char* surface_mode_name(SurfaceMode m) {
   switch (m) {
     case SurfaceMode::closed: return "closed";
@@ -347,8 +306,7 @@ Result<ControlMeshStages> build_control_mesh(const PointIndex& index, const Cont
     s.seconds.shrink_wrap += since(t), s.cpu_seconds.shrink_wrap += cpu_since(t);
     if (Status st = check_stage(s.wrapped, s.shell_info, "shrink-wrapping"); !st.ok()) return st;
   }
-  const bool rejoined = !sheet && o.surface != SurfaceMode::open && rejoin_cut_tubes(s, index) > 0;
-  const MeshInfo wrapped_info = sheet || rejoined ? mesh_info(s.wrapped) : s.shell_info;
+  const MeshInfo wrapped_info = sheet ? mesh_info(s.wrapped) : s.shell_info;
 
   stage("simplifying");
   t = Clock::now();

@@ -31,7 +31,7 @@ Result<MeshEncoding> encode_mesh(const TriangleMesh& mesh, const EncodeOptions& 
   auto prepared = prepare_mesh_input(mesh, &me.cleanup);
   if (!prepared.ok()) return prepared.status();
   me.input = std::move(prepared).value();
-  me.input_info = mesh_info(me.input);
+  me.input_info = mesh_counts(me.input);
   const TriangleMesh& in = me.input;
   e.points.xyz = in.positions;
   const MeshSurface surface(in);

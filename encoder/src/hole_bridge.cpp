@@ -185,7 +185,7 @@ size_t bridge_facing_loops(TriangleMesh& m, std::vector<std::vector<uint32_t>>& 
   std::sort(pairs.begin(), pairs.end());
   std::vector<uint8_t> used(nl, 0);
   size_t built = 0;
-  const size_t crossings = pairs.empty() ? 0 : count_self_intersections(m);
+  size_t crossings = pairs.empty() ? 0 : count_self_intersections(m);
   for (const auto& [score, a, b] : pairs) {
     if (used[a] || used[b]) continue;
     const LoopShape &sa = shapes[a], &sb = shapes[b];
@@ -253,6 +253,7 @@ size_t bridge_facing_loops(TriangleMesh& m, std::vector<std::vector<uint32_t>>& 
       continue;
     }
     used[a] = used[b] = 1;
+    crossings = count_self_intersections(m);  // the next tube is judged by its own crossings
     ++built;
   }
   std::vector<std::vector<uint32_t>> rest;

@@ -198,12 +198,18 @@ std::vector<uint8_t> boundary_edges(uint32_t vertex_count, std::span<const uint3
 
 Result<TriangleMesh> control_mesh_from_mesh(const TriangleMesh& input, const MeshSurface& surface, uint32_t target_faces,
                                             MeshControlStats* stats) {
-  const MeshInfo before = mesh_info(input);
+  const MeshInfo before = mesh_counts(input);
   SimplifyStats ss;
   auto simplified = simplify_mesh(input, target_faces, &ss);
   if (!simplified.ok()) return simplified.status();
   TriangleMesh m = std::move(simplified).value();
   const MeshInfo after = mesh_info(m);
+  // The decoder's limits (a vertex's valence, above all) bind the control
+  // mesh: an input whose poles QEM cannot bring under them is refused.
+  if (!after.manifold && after.status.code() != ErrorCode::ok)
+    return Status(ErrorCode::invalid_argument, "the control mesh simplified from it (" + std::to_string(m.triangle_count()) +
+                                                   " triangles) is beyond the format's limits: " + after.status.message() +
+                                                   "; a larger --control-faces may help");
   if (!after.manifold || after.genus != before.genus || after.components != before.components ||
       after.boundary_loops != before.boundary_loops)
     return Status(ErrorCode::internal, "the simplified control mesh lost the input's topology (genus " +

@@ -322,7 +322,7 @@ SheetCut cut_to_sheet(const TriangleMesh& shell, const PointIndex& index, const 
   return out;
 }
 
-size_t trim_unsupported(TriangleMesh& m, const PointIndex& index, double reach, int grow) {
+size_t trim_unsupported(TriangleMesh& m, const PointIndex& index, double reach) {
   const PointCloud& pc = index.points();
   const double r2 = reach * reach;
   const auto far = [&](const float* q) {
@@ -342,15 +342,6 @@ size_t trim_unsupported(TriangleMesh& m, const PointIndex& index, double reach, 
       for (int a = 0; a < 3; ++a) c[a] += v[a] / 3.0f;
     }
     if (all_far && far(c)) alive[t] = 0, ++removed;
-  }
-  for (int g = 0; g < grow && removed > 0; ++g) {
-    std::vector<uint8_t> touched(m.vertex_count(), 0);
-    for (size_t t = 0; t < m.triangle_count(); ++t)
-      if (!alive[t])
-        for (int k = 0; k < 3; ++k) touched[m.triangles[3 * t + k]] = 1;
-    for (size_t t = 0; t < m.triangle_count(); ++t)
-      if (alive[t] && (touched[m.triangles[3 * t]] || touched[m.triangles[3 * t + 1]] || touched[m.triangles[3 * t + 2]]))
-        alive[t] = 0, ++removed;
   }
   removed += clean_alive(m, alive);
   compact(m, alive);

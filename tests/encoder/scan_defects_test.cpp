@@ -214,27 +214,6 @@ TEST_CASE("defect shapes: a 10% or 15% hole under closed mode keeps the genus an
   }
 }
 
-TEST_CASE("defect shapes: where the carving caps both ends of a tube the scan cut through, a tube rejoins them") {
-  // A double torus missing 10% of its area towards +x: the hole runs
-  // right round one tube, the carving does not leak but carves the gap
-  // away and caps the two cut ends (genus 1).  The caps have no points
-  // near them; cut out, their loops face each other and are joined.
-  const dt::Shape& s = shape("double torus");
-  const PointCloud holed = dt::with_hole(dt::sample_sdf(s.sdf, s.lo, s.hi, 4000, 5), {1, 0, 0}, 0.10);
-  EncodeOptions o;
-  o.levels = 1;
-  o.control.surface = SurfaceMode::closed;
-  auto e = encode_points(holed, o);
-  REQUIRE(e.ok());
-  INFO(e.value().stages.surface_reason);
-  CHECK(e.value().stages.surface_reason.find("rejoined") != std::string::npos);
-  const MeshInfo info = mesh_info(TriangleMesh{e.value().levels.positions[1], e.value().levels.triangles[1]});
-  CHECK(info.closed);
-  CHECK(info.components == 1);
-  CHECK(info.genus == s.genus);
-  CHECK(e.value().stages.bridged_area > 0);
-}
-
 TEST_CASE("defect shapes: a 10% or 15% hole under open mode gives a boundary along the hole") {
   for (const char* hole : {"hole 10%", "hole 15%"})
   for (const char* name : kShapes) {

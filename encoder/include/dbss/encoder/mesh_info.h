@@ -22,4 +22,10 @@ struct MeshInfo {
 };
 MeshInfo mesh_info(const TriangleMesh& mesh);
 
+// The same counts for a mesh already known to be an oriented manifold
+// (prepare_mesh_input checked it), without the decoder's topology limits:
+// an input mesh may have vertices of any valence (a UV sphere's poles),
+// which only the control mesh must not.
+MeshInfo mesh_counts(const TriangleMesh& mesh);
+
 }  // namespace dbss

@@ -51,10 +51,8 @@ SheetCut cut_to_sheet(const TriangleMesh& shell, const PointIndex& index, const 
 
 // Removes triangles whose three corners and centroid are all farther than
 // `reach` from every point (the rim of the slab overhanging the points),
-// and then `grow` rings of triangles round them (so that the pieces of one
-// unsupported patch that dips toward the points merge into one hole), then
-// the same clean-up as cut_to_sheet.  Returns how many went.
-size_t trim_unsupported(TriangleMesh& sheet, const PointIndex& index, double reach, int grow = 0);
+// then the same clean-up as cut_to_sheet.  Returns how many went.
+size_t trim_unsupported(TriangleMesh& sheet, const PointIndex& index, double reach);
 
 // Boundary loops of an oriented manifold, each as its vertices in the order
 // of the boundary half-edges (the triangle on the left of the walk).
