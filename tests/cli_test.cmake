@@ -96,6 +96,10 @@ file(WRITE ${WORK}/fin.off "OFF\n5 3 0\n0 0 0\n1 0 0\n0 1 0\n0 -1 0\n0 0 1\n3 0 
 expect_run(1 "fin.off: edge 0-1 is shared by 3 triangles \\(non-manifold\\)" ${DBSS} encode ${WORK}/fin.off -o ${WORK}/fin.dbss)
 file(WRITE ${WORK}/bowtie.off "OFF\n5 2 0\n0 0 0\n1 0 0\n0 1 0\n-1 0 0\n0 -1 0\n3 0 1 2\n3 0 3 4\n")
 expect_run(1 "bowtie.off: vertex 0 joins 2 triangles in more than one fan" ${DBSS} encode ${WORK}/bowtie.off -o ${WORK}/fin.dbss)
+# Two triangles back to back: closed and manifold, but no surface; bad
+# input (exit 1), not an encoder failure (exit 2).
+file(WRITE ${WORK}/pillow.off "OFF\n3 2 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n3 0 2 1\n")
+expect_run(1 "pillow.off: the control mesh lost the input's topology" ${DBSS} encode ${WORK}/pillow.off -o ${WORK}/fin.dbss)
 if(EXISTS ${WORK}/fin.dbss)
   message(FATAL_ERROR "a refused mesh left ${WORK}/fin.dbss behind")
 endif()

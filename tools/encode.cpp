@@ -109,15 +109,6 @@ int run_encode(const std::vector<std::string_view>& args) {
       return 1;
     }
   }
-  if (!dump.empty()) {
-    // Before the work: a bad directory fails the command with no output written.
-    std::error_code ec;
-    std::filesystem::create_directories(dump, ec);
-    if (ec) {
-      std::fprintf(stderr, "dbss encode: %s: cannot create directory: %s\n", dump.c_str(), ec.message().c_str());
-      return 1;
-    }
-  }
   using Clock = std::chrono::steady_clock;
   const auto t0 = Clock::now();
   if (input_mode != "points") {
@@ -136,6 +127,15 @@ int run_encode(const std::vector<std::string_view>& args) {
     }
     if (input_mode == "mesh") {
       std::fprintf(stderr, "dbss encode: %s: --input mesh, but the file has no faces\n", input.c_str());
+      return 1;
+    }
+  }
+  if (!dump.empty()) {
+    // Before the work (and after a mesh input refused it): a bad directory fails the command with no output written.
+    std::error_code ec;
+    std::filesystem::create_directories(dump, ec);
+    if (ec) {
+      std::fprintf(stderr, "dbss encode: %s: cannot create directory: %s\n", dump.c_str(), ec.message().c_str());
       return 1;
     }
   }

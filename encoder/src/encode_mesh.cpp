@@ -90,7 +90,14 @@ Result<MeshEncoding> encode_mesh(const TriangleMesh& mesh, const EncodeOptions& 
     const MeshInfo got = mesh_info(e.control);
     const MeshInfo& want = me.input_info;
     if (got.genus != want.genus || got.components != want.components || got.boundary_loops != want.boundary_loops)
-      return Status(ErrorCode::internal, "the control mesh after Draco lost the input's topology");
+      // Seen on inputs with parts too small to be a surface (two triangles
+      // back to back): the input's doing, said as such, not an encoder bug.
+      return Status(ErrorCode::invalid_argument,
+                    "the control mesh lost the input's topology once its positions were rounded (genus " +
+                        std::to_string(want.genus) + " -> " + std::to_string(got.genus) + ", components " +
+                        std::to_string(want.components) + " -> " + std::to_string(got.components) +
+                        "): the mesh may have degenerate parts (a component of two triangles back to back, or of no "
+                        "area); try a larger --control-bits");
   }
   e.seconds.draco = since(t);
   c.header.control_position_bits = static_cast<uint8_t>(e.control_bits);
