@@ -39,9 +39,9 @@ chunk raises from ``push``; the levels verified before it stay usable."""
 
 
 def _points_array(points):
-    """An N x 3 C-contiguous float32 array from the caller's points (or the
-    vertices of a (vertices, faces) mesh, as `dbss encode` uses a mesh
-    file's vertices)."""
+    """An N x 3 C-contiguous float32 array from the caller's points, and the
+    faces of a (vertices, faces) mesh (None for points)."""
+    faces = None
     if isinstance(points, tuple) and len(points) == 2:
         vertices, faces = points
         faces = _np.asarray(faces)
@@ -54,23 +54,26 @@ def _points_array(points):
     if arr.ndim != 2 or arr.shape[1] != 3:
         raise ValueError(f"points must be an N x 3 array, got shape {arr.shape}")
     # float64 rounds to the nearest float32, as the command reads text.
-    return _np.ascontiguousarray(arr, dtype=_np.float32)
+    return _np.ascontiguousarray(arr, dtype=_np.float32), faces
 
 
 def encode(points, *, levels=None, error=None, return_stats=False, **options):
-    """Encodes points (N x 3 float32/float64, or a (vertices, faces) mesh of
-    which the vertices are used) and returns the .dbss bytes; with
+    """Encodes points (N x 3 float32/float64) or a (vertices, faces) mesh
+    (faces F x 3 integers; encoded as ``dbss encode`` encodes a mesh file,
+    unless ``input="points"``) and returns the .dbss bytes; with
     ``return_stats=True``, ``(bytes, stats)``.  ``levels``: a number 0..8 or
     "auto" (default, as the command); ``error``: relative to the diagonal
     (default 1e-4).  The GIL is released while encoding."""
     options.update(levels=levels, error=error)
-    return _dbss.encode(_points_array(points), options, bool(return_stats))
+    arr, faces = _points_array(points)
+    return _dbss.encode(arr, options, bool(return_stats), faces)
 
 
 def encode_file(path, out_path, **options):
-    """Encodes a .ply/.obj/.off/.xyz/.stl file into ``out_path`` (written
-    atomically) exactly as ``dbss encode path -o out_path`` with the same
-    options, and returns the statistics per stage and level."""
+    """Encodes a .ply/.obj/.off/.xyz/.stl/.glb/.gltf file into ``out_path``
+    (written atomically) exactly as ``dbss encode path -o out_path`` with the
+    same options (a file with faces as a mesh unless ``input="points"``),
+    and returns the statistics per stage and level."""
     return _dbss.encode_file(_os.fspath(path), _os.fspath(out_path), options)
 
 

@@ -14,6 +14,7 @@
 
 #include "dbss/encoder/mesh_shape.h"
 #include "dbss/encoder/encode.h"
+#include "dbss/encoder/encode_mesh.h"
 #include "dbss/encoder/point_input.h"
 #include "dbss/io/file.h"
 #include "dbss/io/geometry_files.h"
@@ -29,6 +30,7 @@ namespace {
 struct Settings {
   EncodeOptions options;
   bool strict = false;
+  std::string input;  // "", "points" or "mesh": as `dbss encode --input`
 };
 
 // Keyword arguments as `dbss encode` flags: levels=2 is --levels 2,
@@ -49,6 +51,10 @@ Settings settings_from(const py::dict& kwargs, const char* fn) {
       if (v.cast<bool>()) args.push_back("--keep-outliers"), keys.push_back(key);
     } else if (key == "strict") {
       s.strict = v.cast<bool>();
+    } else if (key == "input") {
+      s.input = v.cast<std::string>();
+      if (s.input != "points" && s.input != "mesh")
+        throw py::value_error(std::string(fn) + "(): input needs \"points\" or \"mesh\"");
     } else if (key == "source_name") {
       s.options.source_name = v.cast<std::string>();
     } else if (key == "threads") {
@@ -222,13 +228,41 @@ Encoding run(const PointCloud& pc, const Settings& s, const std::string& name) {
   return std::move(r).value();
 }
 
+// Runs the mesh encoder (dbss encode on a file with faces) without the
+// GIL; the input's topology goes to `input` for the statistics.
+Encoding run_mesh(const TriangleMesh& mesh, const Settings& s, const std::string& name, MeshInfo& input) {
+  Result<MeshEncoding> r = Status();
+  {
+    py::gil_scoped_release nogil;
+    r = encode_mesh(mesh, s.options);
+  }
+  if (!r.ok()) {
+    const Status st = r.status();
+    throw_status(Status(st.code(), name + ": " + st.message(), st.offset()));
+  }
+  input = r.value().input_info;
+  return std::move(r.value().encoding);
+}
+
+py::dict mesh_stats(const Encoding& e, size_t vertices, const Settings& s, const MeshInfo& input) {
+  py::dict d = stats_dict(e, vertices, s.options);
+  py::dict in;
+  in["components"] = input.components;
+  in["genus"] = input.genus;
+  in["boundary_loops"] = input.boundary_loops;
+  d["input"] = "mesh";
+  d["mesh"] = in;
+  return d;
+}
+
 }  // namespace
 
 void register_encode(py::module_& m) {
   m.def("check_options", [](py::dict kwargs) { settings_from(kwargs, "encode"); }, py::arg("options"));
   m.def(
       "encode",
-      [](py::array_t<float, py::array::c_style | py::array::forcecast> points, py::dict kwargs, bool with_stats) {
+      [](py::array_t<float, py::array::c_style | py::array::forcecast> points, py::dict kwargs, bool with_stats,
+         py::object faces) {
         const Settings s = settings_from(kwargs, "encode");
         if (points.ndim() != 2 || points.shape(1) != 3)
           throw py::value_error("encode(): points must be an N x 3 array");
@@ -237,17 +271,61 @@ void register_encode(py::module_& m) {
         for (size_t i = 0; i < pc.xyz.size(); ++i)
           if (!std::isfinite(pc.xyz[i]))
             throw py::value_error("encode(): point " + std::to_string(i / 3) + " is not finite (NaN or infinite)");
+        if (!faces.is_none() && s.input != "points") {
+          // A (vertices, faces) mesh, encoded as `dbss encode` encodes a
+          // mesh file: its own QEM control mesh, displacements cast.
+          const auto f = faces.cast<py::array_t<int64_t, py::array::c_style | py::array::forcecast>>();
+          if (f.ndim() != 2 || f.shape(1) != 3) throw py::value_error("encode(): faces must be an F x 3 array");
+          TriangleMesh mesh{pc.xyz, {}};
+          mesh.triangles.reserve(static_cast<size_t>(f.size()));
+          const size_t nv = pc.size();
+          for (py::ssize_t i = 0; i < f.size(); ++i) {
+            const int64_t v = f.data()[i];
+            if (v < 0 || static_cast<uint64_t>(v) >= nv)
+              throw py::value_error("encode(): face " + std::to_string(i / 3) + " names vertex " + std::to_string(v) +
+                                    "; there are " + std::to_string(nv));
+            mesh.triangles.push_back(static_cast<uint32_t>(v));
+          }
+          MeshInfo input;
+          const Encoding e = run_mesh(mesh, s, "mesh", input);
+          py::bytes data(reinterpret_cast<const char*>(e.bytes.data()), e.bytes.size());
+          if (!with_stats) return py::object(data);
+          return py::object(py::make_tuple(data, mesh_stats(e, nv, s, input)));
+        }
+        if (s.input == "mesh") throw py::value_error("encode(): input=\"mesh\" needs (vertices, faces)");
         const Encoding e = run(pc, s, "points");
         py::bytes data(reinterpret_cast<const char*>(e.bytes.data()), e.bytes.size());
         if (!with_stats) return py::object(data);
         return py::object(py::make_tuple(data, stats_dict(e, pc.size(), s.options)));
       },
-      py::arg("points"), py::arg("options"), py::arg("with_stats"));
+      py::arg("points"), py::arg("options"), py::arg("with_stats"), py::arg("faces") = py::none());
   m.def(
       "encode_file",
       [](const std::string& path, const std::string& out_path, py::dict kwargs) {
         Settings s = settings_from(kwargs, "encode_file");
         if (s.options.source_name.empty()) s.options.source_name = std::filesystem::path(path).filename().string();
+        if (s.input != "points") {
+          // As the command: a file with faces is a mesh unless input="points".
+          Result<GeometryFile> g = Status();
+          {
+            py::gil_scoped_release nogil;
+            g = read_geometry(path);
+          }
+          if (!g.ok()) throw_status(g.status());
+          if (!g.value().triangles.empty()) {
+            const TriangleMesh mesh{std::move(g.value().points.xyz), std::move(g.value().triangles)};
+            MeshInfo input;
+            const Encoding e = run_mesh(mesh, s, path, input);
+            Status written;
+            {
+              py::gil_scoped_release nogil;
+              written = io::write_file_atomic(out_path, e.bytes);
+            }
+            if (!written.ok()) throw_status(written);
+            return mesh_stats(e, mesh.vertex_count(), s, input);
+          }
+          if (s.input == "mesh") throw_status(Status(ErrorCode::invalid_argument, path + ": input=\"mesh\", but the file has no faces"));
+        }
         Result<PointCloud> pc = Status();
         {
           py::gil_scoped_release nogil;
