@@ -121,6 +121,13 @@ int run_encode(const std::vector<std::string_view>& args) {
     }
     if (!geometry.value().triangles.empty()) {
       if (!dump.empty()) return usage("--dump-stages is for point input (the stages of reconstruction)");
+      // Reconstruction's choices mean nothing for a mesh: said, not dropped
+      // in silence (the mesh path checks the topology itself, so --strict
+      // has nothing more to check either).
+      for (const std::string_view a : args)
+        if (a == "--strict" || a == "--surface" || a == "--grid" || a == "--keep-outliers" || a == "--crease-angle")
+          std::fprintf(stderr, "dbss encode: %s: note: %s is for point input; ignored for a mesh (--input points to reconstruct from its vertices)\n",
+                       input.c_str(), std::string(a).c_str());
       const TriangleMesh mesh{std::move(geometry.value().points.xyz), std::move(geometry.value().triangles)};
       return run_encode_mesh(input, output, mesh, options,
                              std::chrono::duration<double>(Clock::now() - t0).count());
