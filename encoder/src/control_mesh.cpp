@@ -185,8 +185,10 @@ bool build_sheet(ControlMeshStages& s, const PointIndex& index, const ControlMes
   // the cut left, not where the scan ends: closed in every mode.
   // So are loops no wider than the gaps of the sparsest sampling: a hole
   // the points themselves leave (a saddle sampled thinly), not their end.
+  // At most twice the pinholes' length: strays kept (--keep-outliers) or a
+  // sparse tail of the sampling must not close where a scan really ends.
   const double gap = 4 * std::numbers::pi * point_spacing(index, 1, 0.99);  // perimeter of a circle two gaps wide
-  const HoleFill pinholes = fill_holes(sheet, cell, std::max(kPinhole * cell, gap));
+  const HoleFill pinholes = fill_holes(sheet, cell, std::max(kPinhole * cell, std::min(gap, 2 * kPinhole * cell)));
   const double sheet_area = mesh_area(sheet);
   TriangleMesh filled = sheet;
   const HoleFill fill = fill_holes(filled, cell, 1e300, /*bridge=*/true);
