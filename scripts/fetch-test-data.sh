@@ -13,6 +13,9 @@ files=(
   data/meshes/armadillo.off                      # rd_bench's true surfaces (with fandisk)
   data/meshes/eight.off
   data/meshes/knot1.off
+  data/meshes/elephant.off                       # mesh input (issue 18)
+  data/meshes/elephant-with-holes.off
+  data/meshes/blobby_3cc.off
   data/points_3/kitten.xyz
   data/points_3/hippo1.ply
   data/points_3/half.xyz
