@@ -111,9 +111,11 @@ int run_encode(const std::vector<std::string_view>& args) {
   }
   using Clock = std::chrono::steady_clock;
   const auto t0 = Clock::now();
+  Result<PointCloud> points = Status(ErrorCode::internal, "not read");
   if (input_mode != "points") {
     // A file with faces is a mesh unless told otherwise; a point file falls
-    // through to reconstruction (unless --input mesh asked for faces).
+    // through to reconstruction (unless --input mesh asked for faces), with
+    // the points read here (a large .xyz is not parsed twice).
     auto geometry = read_geometry(input);
     if (!geometry.ok()) {
       std::fprintf(stderr, "dbss encode: %s\n", geometry.status().message().c_str());
@@ -136,6 +138,7 @@ int run_encode(const std::vector<std::string_view>& args) {
       std::fprintf(stderr, "dbss encode: %s: --input mesh, but the file has no faces\n", input.c_str());
       return 1;
     }
+    points = std::move(geometry.value().points);  // what read_points gives: read_geometry's points
   }
   if (!dump.empty()) {
     // Before the work (and after a mesh input refused it): a bad directory fails the command with no output written.
@@ -147,7 +150,7 @@ int run_encode(const std::vector<std::string_view>& args) {
     }
   }
   Progress progress("dbss encode");
-  auto points = read_points(input);
+  if (input_mode == "points") points = read_points(input);
   if (!points.ok()) {
     std::fprintf(stderr, "dbss encode: %s\n", points.status().message().c_str());
     return 1;

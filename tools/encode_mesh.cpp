@@ -10,6 +10,12 @@
 
 namespace dbss::tools {
 
+namespace {
+// Most triangles (level and input together) the report measures a level's
+// distance to the input for.
+constexpr size_t kMaxReportTriangles = 6'000'000;
+}  // namespace
+
 int run_encode_mesh(const std::string& input, const std::string& output, const TriangleMesh& mesh, EncodeOptions options,
                     double read_s) {
   Progress progress("dbss encode");
@@ -62,10 +68,16 @@ int run_encode_mesh(const std::string& input, const std::string& output, const T
     const TriangleMesh m{e.levels.positions[l], e.levels.triangles[l]};
     const MeshInfo info = mesh_info(m);
     kept = kept && info.components == in.components && info.genus == in.genus && info.boundary_loops == in.boundary_loops;
-    const double d = mesh_distance(m, me.input, mo).mean() / e.diagonal;
-    std::printf("%-5u %9zu %10zu %10llu %10u %8lld %11u %11.3e\n", l, m.vertex_count(), m.triangle_count(),
+    // The distance builds a tree of both meshes (about 100 bytes a
+    // triangle): past a few million triangles the report would need more
+    // memory than the encoding did, so it is left out there.
+    const bool measured = m.triangle_count() + me.input.triangle_count() <= kMaxReportTriangles;
+    const double d = measured ? mesh_distance(m, me.input, mo).mean() / e.diagonal : 0.0;
+    std::printf("%-5u %9zu %10zu %10llu %10u %8lld %11u ", l, m.vertex_count(), m.triangle_count(),
                 static_cast<unsigned long long>(prefix_bytes(e, l)), info.components, static_cast<long long>(info.genus),
-                info.boundary_loops, d);
+                info.boundary_loops);
+    if (measured) std::printf("%11.3e\n", d);
+    else std::printf("%11s\n", "-");
   }
   if (!kept) {
     std::fprintf(stderr, "dbss encode: %s: warning (topology): a level's topology differs from the input's\n", input.c_str());
