@@ -1,4 +1,5 @@
 #include "dbss/encoder/encode.h"
+#include "encode_steps.h"
 
 #include <algorithm>
 #include <chrono>
@@ -27,6 +28,47 @@ uint32_t auto_levels(const format::MeshCounts& control, size_t points) {
     if (!c || c->vertices > points) break;
   }
   return l;
+}
+
+void set_extent_and_step(Encoding& e, std::span<const float> xyz, const EncodeOptions& o) {
+  format::Header& h = e.contents.header;
+  h.bbox_min = {xyz[0], xyz[1], xyz[2]};
+  h.bbox_max = h.bbox_min;
+  for (size_t i = 0; i < xyz.size() / 3; ++i)
+    for (int a = 0; a < 3; ++a) {
+      h.bbox_min[a] = std::min(h.bbox_min[a], xyz[3 * i + a]);
+      h.bbox_max[a] = std::max(h.bbox_max[a], xyz[3 * i + a]);
+    }
+  double diag2 = 0;
+  for (int a = 0; a < 3; ++a) diag2 += std::pow(double(h.bbox_max[a]) - h.bbox_min[a], 2);
+  e.diagonal = std::sqrt(diag2);
+  // The quantization step, resolved here once: every level (and `dbss
+  // compare`'s baseline) uses it as it is.  The error target is what the
+  // header and `meta` report.
+  if (o.step > 0) {
+    e.step = static_cast<float>(o.step);
+    e.error = o.step / (2 * e.diagonal);
+  } else {
+    e.step = quantization_step(o.error, e.diagonal);
+    e.error = o.error;
+  }
+}
+
+Status control_mesh_through_draco(Encoding& e) {
+  auto draco = encode_control_mesh(e.stages.control, {e.control_bits, 0});
+  if (!draco.ok()) return draco.status();
+  auto decoded = decode_control_mesh(draco.value(), 1u << 30, 1u << 30);
+  if (!decoded.ok()) return Status(ErrorCode::internal, "control mesh after Draco: " + decoded.status().to_string());
+  e.control = std::move(decoded).value();
+  auto topo = build_topology(static_cast<uint32_t>(e.control.vertex_count()), e.control.triangles);
+  if (!topo.ok()) return Status(ErrorCode::internal, "control mesh after Draco: " + topo.status().to_string());
+  format::FileContents& c = e.contents;
+  c.header.control_position_bits = static_cast<uint8_t>(e.control_bits);
+  c.header.control_vertex_count = static_cast<uint32_t>(e.control.vertex_count());
+  c.header.control_edge_count = topo.value().edge_count();
+  c.header.control_triangle_count = static_cast<uint32_t>(e.control.triangle_count());
+  c.control_mesh = std::move(draco).value();
+  return {};
 }
 
 Result<Encoding> encode_points(const PointCloud& pc, const EncodeOptions& o) {
@@ -63,27 +105,7 @@ Result<Encoding> encode_points(const PointIndex& input_index, const EncodeOption
   e.seconds.control = since(t);
 
   format::FileContents& c = e.contents;
-  c.header.bbox_min = {pc.xyz[0], pc.xyz[1], pc.xyz[2]};
-  c.header.bbox_max = c.header.bbox_min;
-  for (size_t i = 0; i < pc.size(); ++i)
-    for (int a = 0; a < 3; ++a) {
-      c.header.bbox_min[a] = std::min(c.header.bbox_min[a], pc.xyz[3 * i + a]);
-      c.header.bbox_max[a] = std::max(c.header.bbox_max[a], pc.xyz[3 * i + a]);
-    }
-  double diag2 = 0;
-  for (int a = 0; a < 3; ++a) diag2 += std::pow(double(c.header.bbox_max[a]) - c.header.bbox_min[a], 2);
-  e.diagonal = std::sqrt(diag2);
-
-  // The quantization step, resolved here once: every level (and `dbss
-  // compare`'s baseline) uses it as it is.  The error target is what the
-  // header and `meta` report.
-  if (o.step > 0) {
-    e.step = static_cast<float>(o.step);
-    e.error = o.step / (2 * e.diagonal);
-  } else {
-    e.step = quantization_step(o.error, e.diagonal);
-    e.error = o.error;
-  }
+  set_extent_and_step(e, pc.xyz, o);
 
   // Draco's position bits: from the step unless given.  A control vertex
   // is an even vertex of every level and never moves again, so its
@@ -101,23 +123,12 @@ Result<Encoding> encode_points(const PointIndex& input_index, const EncodeOption
   // The file holds Draco's version of the control mesh; everything after
   // continues from what a decoder will see.
   t = Clock::now();
-  auto draco = encode_control_mesh(e.stages.control, {e.control_bits, 0});
-  if (!draco.ok()) return draco.status();
-  auto decoded = decode_control_mesh(draco.value(), 1u << 30, 1u << 30);
-  if (!decoded.ok()) return Status(ErrorCode::internal, "control mesh after Draco: " + decoded.status().to_string());
-  e.control = std::move(decoded).value();
-  auto topo = build_topology(static_cast<uint32_t>(e.control.vertex_count()), e.control.triangles);
-  if (!topo.ok()) return Status(ErrorCode::internal, "control mesh after Draco: " + topo.status().to_string());
+  if (Status st = control_mesh_through_draco(e); !st.ok()) return st;
   e.seconds.draco = since(t);
 
   // Draco renumbers: the tags follow the vertices to the decoded mesh.
   c.creases = transfer_creases(e.stages.control, creases, e.control);
   if (!c.creases.empty()) c.header.version_minor = format::kCreaseVersionMinor;
-  c.header.control_position_bits = static_cast<uint8_t>(e.control_bits);
-  c.header.control_vertex_count = static_cast<uint32_t>(e.control.vertex_count());
-  c.header.control_edge_count = topo.value().edge_count();
-  c.header.control_triangle_count = static_cast<uint32_t>(e.control.triangle_count());
-  c.control_mesh = std::move(draco).value();
   e.level_count = o.levels == kAutoLevels
                       ? auto_levels({c.header.control_vertex_count, c.header.control_edge_count, c.header.control_triangle_count},
                                     pc.size())

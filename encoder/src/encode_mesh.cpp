@@ -1,4 +1,5 @@
 #include "dbss/encoder/encode_mesh.h"
+#include "encode_steps.h"
 
 #include <algorithm>
 #include <chrono>
@@ -53,35 +54,13 @@ Result<MeshEncoding> encode_mesh(const TriangleMesh& mesh, const EncodeOptions& 
   e.seconds.control = since(t);
 
   format::FileContents& c = e.contents;
-  c.header.bbox_min = {in.positions[0], in.positions[1], in.positions[2]};
-  c.header.bbox_max = c.header.bbox_min;
-  for (size_t i = 0; i < in.vertex_count(); ++i)
-    for (int a = 0; a < 3; ++a) {
-      c.header.bbox_min[a] = std::min(c.header.bbox_min[a], in.positions[3 * i + a]);
-      c.header.bbox_max[a] = std::max(c.header.bbox_max[a], in.positions[3 * i + a]);
-    }
-  double diag2 = 0;
-  for (int a = 0; a < 3; ++a) diag2 += std::pow(double(c.header.bbox_max[a]) - c.header.bbox_min[a], 2);
-  e.diagonal = std::sqrt(diag2);
+  set_extent_and_step(e, in.positions, o);
   if (!(e.diagonal > 0)) return Status(ErrorCode::invalid_argument, "the mesh has no extent");
-  if (o.step > 0) {
-    e.step = static_cast<float>(o.step);
-    e.error = o.step / (2 * e.diagonal);
-  } else {
-    e.step = quantization_step(o.error, e.diagonal);
-    e.error = o.error;
-  }
   e.control_bits = o.control_bits ? o.control_bits : control_bits_for_step(e.stages.control, e.step);
 
   // As encode_points: everything after Draco continues from what a decoder sees.
   t = Clock::now();
-  auto draco = encode_control_mesh(e.stages.control, {e.control_bits, 0});
-  if (!draco.ok()) return draco.status();
-  auto decoded = decode_control_mesh(draco.value(), 1u << 30, 1u << 30);
-  if (!decoded.ok()) return Status(ErrorCode::internal, "control mesh after Draco: " + decoded.status().to_string());
-  e.control = std::move(decoded).value();
-  auto topo = build_topology(static_cast<uint32_t>(e.control.vertex_count()), e.control.triangles);
-  if (!topo.ok()) return Status(ErrorCode::internal, "control mesh after Draco: " + topo.status().to_string());
+  if (Status st = control_mesh_through_draco(e); !st.ok()) return st;
   {
     // Every level is a 1-to-4 split of the control mesh, so it has the
     // control mesh's topology: checking the one Draco gave back (its
@@ -100,11 +79,6 @@ Result<MeshEncoding> encode_mesh(const TriangleMesh& mesh, const EncodeOptions& 
                         "area); try a larger --control-bits");
   }
   e.seconds.draco = since(t);
-  c.header.control_position_bits = static_cast<uint8_t>(e.control_bits);
-  c.header.control_vertex_count = static_cast<uint32_t>(e.control.vertex_count());
-  c.header.control_edge_count = topo.value().edge_count();
-  c.header.control_triangle_count = static_cast<uint32_t>(e.control.triangle_count());
-  c.control_mesh = std::move(draco).value();
   e.level_count = o.levels == kAutoLevels
                       ? auto_levels({c.header.control_vertex_count, c.header.control_edge_count, c.header.control_triangle_count},
                                     in.vertex_count())
