@@ -231,6 +231,7 @@ bool build_sheet(ControlMeshStages& s, const PointIndex& index, const ControlMes
   s.cut_triangles = cut.removed + trimmed;
   s.pinholes = pinholes.loops;
   s.bridged_area = close ? hole_share : 0;
+  s.doubtful_caps = close ? fill.doubtful_pairs : 0;
   s.wrap_stats = wrap;
   s.wrapped = close ? std::move(filled) : std::move(sheet);
   return true;

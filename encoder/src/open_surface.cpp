@@ -413,7 +413,7 @@ HoleFill fill_holes(TriangleMesh& m, double edge, double max_perimeter, bool bri
   std::vector<uint32_t> tube_vertices;
   if (bridge) {
     const size_t before = loops.size();
-    out.bridges = bridge_facing_loops(m, loops, edge, tube_vertices);
+    out.bridges = bridge_facing_loops(m, loops, edge, tube_vertices, &out.doubtful_pairs);
     out.loops += before - loops.size();
   }
   for (const std::vector<uint32_t>& loop : loops) {

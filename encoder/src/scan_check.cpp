@@ -113,6 +113,12 @@ ScanCheck check_scan(const Encoding& e, const PointIndex& index) {
                           (c.spacing > 0 ? fmt("%.1f", reach / c.spacing) + " point spacings" : fmt("%.3g", reach) + " model units") + " (bound " + fmt("%.0f%%", 100 * kMaxUncovered) +
                           (e.stages.bridged_area > 0 ? fmt(" plus 1.5 times the %.1f%% bridged over holes", 100 * e.stages.bridged_area) : "") +
                           "): surface invented where nothing was scanned (holes, an open patch closed over, or stray points)");
+  if (e.stages.doubtful_caps > 0)
+    warn("topology", std::to_string(e.stages.doubtful_caps) +
+                         " pair(s) of holes were capped that lie close together and face each other: each pair "
+                         "may be the two ends of a handle or limb where the scan missed a band, and capping them "
+                         "cuts it (the genus may be too low by as much; a scan of the gap, or --surface open "
+                         "to keep the ends as boundaries)");
   if (c.spacing > 0 && c.points_to_surface > kMaxDistance * c.spacing)
     warn("distance", "the points lie " + fmt("%.1f", c.points_to_surface / c.spacing) +
                          " point spacings from the surface on average (bound " + fmt("%.0f", kMaxDistance) +

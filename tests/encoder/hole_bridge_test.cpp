@@ -65,6 +65,7 @@ TEST_CASE("the two ends of a tube cut through are joined by a tube and the handl
     const double edge = 2 * std::numbers::pi * kMajor / 48;
     const HoleFill f = fill_holes(m, edge, 1e300, /*bridge=*/true);
     CHECK(f.bridges == 1);
+    CHECK(f.doubtful_pairs == 0);  // the pair was joined
     CHECK(f.loops == 2);
     const MeshInfo closed = mesh_info(m);
     CHECK(closed.manifold);
@@ -104,6 +105,7 @@ TEST_CASE("holes that face each other through the inside, or a lone hole, are ca
     REQUIRE(mesh_info(m).boundary_loops == 2);
     const HoleFill f = fill_holes(m, edge, 1e300, true);
     CHECK(f.bridges == 0);
+    CHECK(f.doubtful_pairs == 0);  // their axes point at each other: nothing like a cut tube
     CHECK(f.loops == 2);
     const MeshInfo i = mesh_info(m);
     CHECK(i.closed);
@@ -126,6 +128,7 @@ TEST_CASE("holes that face each other through the inside, or a lone hole, are ca
     REQUIRE(mesh_info(m).boundary_loops == 2);
     const HoleFill f = fill_holes(m, edge, 1e300, true);
     CHECK(f.bridges == 0);
+    CHECK(f.doubtful_pairs == 0);
     CHECK(mesh_info(m).genus == 0);
   }
 }

@@ -26,9 +26,11 @@ namespace dbss {
 // radius.  A tube that crosses the mesh all
 // the way round (through a part in its way) is not built.  Bridged loops
 // are removed from `loops`; the new vertices are appended to `added`.
-// Returns the number of tubes built.
+// Returns the number of tubes built.  `unbridged_pairs`, when given, gets
+// the number of disjoint pairs left that half fit the rule (one loop faces
+// the other, the walls lean along the axes): capping them may cut a handle.
 // `m` must be an oriented manifold with boundary; it stays one.
 size_t bridge_facing_loops(TriangleMesh& m, std::vector<std::vector<uint32_t>>& loops, double edge,
-                           std::vector<uint32_t>& added);
+                           std::vector<uint32_t>& added, size_t* unbridged_pairs = nullptr);
 
 }  // namespace dbss

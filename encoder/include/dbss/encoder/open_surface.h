@@ -61,6 +61,7 @@ std::vector<std::vector<uint32_t>> boundary_loops(const TriangleMesh& m);
 struct HoleFill {
   size_t loops = 0;            // holes closed (a bridged pair counts two)
   size_t bridges = 0;          // pairs of loops joined by a tube
+  size_t doubtful_pairs = 0;   // with `bridge`: pairs capped that half looked like a cut tube's ends
   size_t triangles = 0;        // triangles added
   double area = 0;             // their area, model units^2
   std::vector<uint32_t> added_vertices;  // the new vertices (no points support them)
