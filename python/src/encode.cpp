@@ -106,19 +106,23 @@ py::dict stats_dict(const Encoding& e, size_t points_in, const EncodeOptions& o)
   outliers["cluster_points"] = e.outliers.cluster_points;
   stages["outliers"] = outliers;
   py::dict grid = mesh_counts(st.seconds.grid, nullptr);
+  grid["cpu_seconds"] = st.cpu_seconds.grid;
   grid["grid"] = st.carving.grid;
   grid["given"] = o.control.grid != 0;
   stages["choose_grid"] = grid;
   py::dict carve = mesh_counts(st.seconds.carve, nullptr);
+  carve["cpu_seconds"] = st.cpu_seconds.carve;
   carve["occupied"] = st.carving.occupied;
   carve["solid"] = st.carving.solid;
   carve["repaired"] = st.carving.repaired;
   stages["cell_carving"] = carve;
   py::dict tri = mesh_counts(st.seconds.triangulate, &st.shell);
+  tri["cpu_seconds"] = st.cpu_seconds.triangulate;
   tri["components"] = st.shell_info.components;
   tri["genus"] = st.shell_info.genus;
   stages["triangulation"] = tri;
   py::dict wrap = mesh_counts(st.seconds.shrink_wrap, &st.wrapped);
+  wrap["cpu_seconds"] = st.cpu_seconds.shrink_wrap;
   wrap["iterations"] = st.wrap_stats.iterations;
   wrap["mean_distance"] = st.wrap_stats.mean_distance;
   wrap["untangled"] = st.wrap_stats.untangled;
@@ -129,11 +133,15 @@ py::dict stats_dict(const Encoding& e, size_t points_in, const EncodeOptions& o)
   surface["reason"] = st.surface_reason;
   surface["cut_triangles"] = st.cut_triangles;
   surface["bridged_area_share"] = st.bridged_area;
+  surface["doubtful_caps"] = st.doubtful_caps;
   stages["surface"] = surface;
-  stages["simplification"] = mesh_counts(st.seconds.simplify, &st.simplified);
+  py::dict simplification = mesh_counts(st.seconds.simplify, &st.simplified);
+  simplification["cpu_seconds"] = st.cpu_seconds.simplify;
+  stages["simplification"] = simplification;
   // The shaping pass: QEM's mesh before, the control mesh in the file after
   // (as `dbss encode`'s "shaping" row reports them).
   py::dict shape = mesh_counts(st.seconds.shape, &st.control);
+  shape["cpu_seconds"] = st.cpu_seconds.shape;
   const MeshShape final_shape = mesh_shape(e.control);
   shape["enabled"] = o.control.shape.enabled;
   shape["flips"] = st.shape_stats.flips;
@@ -144,6 +152,7 @@ py::dict stats_dict(const Encoding& e, size_t points_in, const EncodeOptions& o)
   shape["max_valence_after"] = final_shape.max_valence;
   stages["shaping"] = shape;
   py::dict project = mesh_counts(st.seconds.project, &st.control);
+  project["cpu_seconds"] = st.cpu_seconds.project;
   project["kept_off"] = st.projection_skipped;
   stages["projection"] = project;
   py::dict draco = mesh_counts(e.seconds.draco, &e.control);

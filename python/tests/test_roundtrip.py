@@ -76,6 +76,12 @@ def test_stats_per_stage_and_level(torus_points, encoded):
     for stage in ("outliers", "choose_grid", "cell_carving", "triangulation", "shrink_wrapping", "simplification",
                   "shaping", "projection", "draco", "levels", "self_check", "container"):
         assert stats["stages"][stage]["seconds"] >= 0
+    # The control-mesh stages also give their CPU time (all threads summed),
+    # the steadier figure on a loaded machine; a stage that ran took some.
+    cpu = [stats["stages"][s]["cpu_seconds"] for s in ("choose_grid", "cell_carving", "triangulation",
+                                                         "shrink_wrapping", "simplification", "shaping", "projection")]
+    assert all(c >= 0 for c in cpu) and sum(cpu) > 0
+    assert stats["stages"]["surface"]["doubtful_caps"] == 0
     shaping = stats["stages"]["shaping"]
     assert shaping["enabled"] and shaping["triangles"] == info["control"]["triangles"]
     assert 0 <= shaping["poor_share_after"] <= 1 and 3 <= shaping["max_valence_after"] <= 64
