@@ -128,13 +128,23 @@ wait_all
 phase "syntax check passed"
 
 echo "web-build: dbss format + decoder for wasm"
+# WebAssembly SIMD by default: the decoder then runs Kernels::paired (two
+# edges per f64x2 vector, the same bits), some 10% faster per level than
+# the scalar kernels.  DBSS_WASM_SIMD=0 builds without it, for browsers
+# that lack SIMD (Chrome < 91, Firefox < 89, Safari < 16.4).
+simd=()
+[ "${DBSS_WASM_SIMD:-1}" = 0 ] || simd=(-msimd128)
 mkdir -p "$out/obj/dbss"
+# Objects built with other flags are rebuilt.
+flags="${cxxflags[*]} ${simd[*]}"
+[ "$(cat "$out/obj/dbss/flags" 2>/dev/null)" = "$flags" ] || rm -f "$out"/obj/dbss/*.o
+echo "$flags" > "$out/obj/dbss/flags"
 objs=()
 for f in "${dbss_sources[@]}" web/src/dbss_wasm.cpp; do
   o=$out/obj/dbss/$(echo "${f%.cpp}" | tr / _).o
   objs+=("$o")
   if [ ! -f "$o" ] || [ "$f" -nt "$o" ] || [ -n "$(find format/include decoder/include decoder/src format/src -newer "$o" -print -quit)" ]; then
-    spawn em++ "${cxxflags[@]}" ${DBSS_WASM_SIMD:+-msimd128} "${includes[@]}" -c "$f" -o "$o"
+    spawn em++ "${cxxflags[@]}" "${simd[@]}" "${includes[@]}" -c "$f" -o "$o"
   fi
 done
 wait_all

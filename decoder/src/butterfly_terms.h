@@ -13,7 +13,9 @@ inline bool regular_end(const TopologyRef& t, uint32_t v) noexcept { return !t.b
 
 // The 8 vertices of a regular stencil for the edge of half-edge h (twin o):
 // u, w, c, d, then the wings across w-c, c-u, u-d, d-w.
-inline void regular_vertices(const TopologyRef& t, uint32_t h, uint32_t o, uint32_t r[8]) noexcept {
+// Always inlined: out of line, r[] would go through memory (WebAssembly's
+// SIMD build left it so).
+__attribute__((always_inline)) inline void regular_vertices(const TopologyRef& t, uint32_t h, uint32_t o, uint32_t r[8]) noexcept {
   const uint32_t* tri = t.tri;
   r[0] = tri[h], r[1] = tri[next_half(h)], r[2] = tri[prev_half(h)], r[3] = across_of(t, h);
   r[4] = across_of(t, next_half(h));

@@ -7,6 +7,9 @@
 #if defined(__x86_64__) && defined(__GNUC__)
 #include <immintrin.h>
 #endif
+#if defined(__wasm_simd128__)
+#include <wasm_simd128.h>
+#endif
 
 #include "butterfly_terms.h"
 
@@ -46,8 +49,9 @@ inline P3 operator*(P3 a, P3 b) { return P3{{a.v[0] * b.v[0], a.v[1] * b.v[1], a
 inline P3 operator*(double w, P3 a) { return P3{{w * a.v[0], w * a.v[1], w * a.v[2]}}; }
 inline P3 operator*(P3 a, double w) { return P3{{a.v[0] * w, a.v[1] * w, a.v[2] * w}}; }
 
-// WebAssembly runs the scalar kernels whatever the choice (its vectors,
-// where enabled, were measured no faster), so it does not ship this copy.
+// WebAssembly runs the scalar or the paired kernels whatever the choice
+// (four-lane vectors there were measured no faster), so it does not ship
+// this copy.
 #if !defined(__wasm__)
 #define DBSS_HAVE_VECTOR_KERNELS 1
 #define DBSS_KERNEL_SCALAR 0
@@ -59,12 +63,14 @@ namespace kernels_generic {
 #undef DBSS_KERNEL_SCALAR
 #endif
 
-// Three scalar lanes: WebAssembly's kernels, and Kernels::scalar elsewhere
-// (the tests check its bits against the same goldens).
+// Three scalar lanes: Kernels::scalar (the tests check its bits against
+// the same goldens); and two edges per two-lane vector, Kernels::paired,
+// WebAssembly's kernels where it has SIMD.
 #define DBSS_KERNEL_SCALAR 1
 #define DBSS_KERNEL_AVX2 0
 namespace kernels_scalar {
 #include "odd_vertex_kernels.inc"
+#include "odd_vertex_pairs.inc"
 }  // namespace kernels_scalar
 #undef DBSS_KERNEL_AVX2
 #undef DBSS_KERNEL_SCALAR
@@ -96,9 +102,16 @@ namespace kernels_avx2 {
 OddVertexKernels select_kernels(Kernels choice) {
   const OddVertexKernels scalar{kernels_scalar::stencil_points, kernels_scalar::displaced_points,
                                 kernels_scalar::displaced_points_chosen};
+  const OddVertexKernels paired{kernels_scalar::stencil_points_paired, kernels_scalar::displaced_points_paired,
+                                kernels_scalar::displaced_points_chosen_paired};
+  if (choice == Kernels::paired) return paired;
 #ifndef DBSS_HAVE_VECTOR_KERNELS
+#if defined(__wasm_simd128__)
+  return choice == Kernels::scalar ? scalar : paired;
+#else
   (void)choice;
   return scalar;
+#endif
 #else
   if (choice == Kernels::scalar) return scalar;
 #ifdef DBSS_HAVE_AVX2_KERNELS

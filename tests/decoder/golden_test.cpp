@@ -73,10 +73,11 @@ TEST_CASE("golden files decode to the recorded bits at every level") {
     std::string word;
     while (in >> word) expect.push_back(std::stoull(word, nullptr, 16));
     // Every build of the kernels: the same bits on every processor (scalar
-    // is the one WebAssembly runs).
+    // and paired are the ones WebAssembly runs, without and with SIMD).
     CHECK(level_hashes(file.value(), Kernels::best) == expect);
     CHECK(level_hashes(file.value(), Kernels::baseline) == expect);
     CHECK(level_hashes(file.value(), Kernels::scalar) == expect);
+    CHECK(level_hashes(file.value(), Kernels::paired) == expect);
   }
 }
 

@@ -2,14 +2,15 @@
 // Browser decoding benchmark: dbss WASM vs draco3d WASM in headless
 // Chromium, levels 3-5 of the shipped example encoded with 5 levels.
 //
-//   node web/bench/run.mjs [--simd | --compare DIR] [--file FILE.dbss]
+//   node web/bench/run.mjs [--scalar | --compare DIR] [--file FILE.dbss]
 //
 // FILE (default: the shipped example encoded with 5 levels) needs levels
 // 3-5.  Makes its files in build-web/bench/ with build/bin/dbss (encode, decode
 // --level L to PLY) and Debian's draco_encoder (its defaults), serves them,
-// and prints a table and the gzipped sizes of what a page ships.  --simd
-// also times the -msimd128 build (scripts/web-build.sh with DBSS_WASM_SIMD=1
-// into build-web-simd/) after checking that it gives the same hashes;
+// and prints a table and the gzipped sizes of what a page ships.  --scalar
+// also times the build without WebAssembly SIMD (scripts/web-build.sh with
+// DBSS_WASM_SIMD=0 into build-web-scalar/) after checking that it gives the
+// same hashes;
 // --compare DIR times another web build of the module (DIR holds its
 // dbss_wasm.mjs and .wasm, e.g. one built from an older commit) the same way.
 import { spawnSync } from 'node:child_process';
@@ -46,18 +47,18 @@ for (const L of levels) {
   }
 }
 
-const simd = process.argv.includes('--simd');
+const scalar = process.argv.includes('--scalar');
 const compareArg = process.argv.indexOf('--compare');
 const compareDir = compareArg > 0 ? resolve(process.argv[compareArg + 1]) : null;
-const other = simd ? 'SIMD' : compareDir ? 'other' : null;
-if (simd) {
-  const r = spawnSync('bash', [join(repo, 'scripts/web-build.sh'), join(repo, 'build-web-simd')], {
-    stdio: ['ignore', 'ignore', 'inherit'], env: { ...process.env, DBSS_WASM_SIMD: '1' } });
-  if (r.status !== 0) throw new Error('the SIMD build failed');
+const other = scalar ? 'scalar' : compareDir ? 'other' : null;
+if (scalar) {
+  const r = spawnSync('bash', [join(repo, 'scripts/web-build.sh'), join(repo, 'build-web-scalar')], {
+    stdio: ['ignore', 'ignore', 'inherit'], env: { ...process.env, DBSS_WASM_SIMD: '0' } });
+  if (r.status !== 0) throw new Error('the scalar build failed');
 }
 
 const mounts = { ...repoMounts(repo, buildDir), '/bench-files/': work, '/bench-input/': dirname(file),
-  '/simd/': compareDir ?? join(repo, 'build-web-simd/dist') };
+  '/other/': compareDir ?? join(repo, 'build-web-scalar/dist') };
 const { server, url } = await startServer({ mounts });
 const browser = await chromium.launch({ executablePath: process.env.DBSS_CHROMIUM ?? '/usr/bin/chromium', args: ['--no-sandbox'] });
 async function measure(otherWasm) {
@@ -78,7 +79,7 @@ async function measure(otherWasm) {
 }
 
 // The builds and draco3d take turns in one page (bench.mjs).
-const res = await measure(other ? '/simd/dbss_wasm.mjs' : null);
+const res = await measure(other ? '/other/dbss_wasm.mjs' : null);
 await browser.close();
 server.close();
 

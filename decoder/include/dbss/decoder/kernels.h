@@ -10,7 +10,8 @@ namespace dbss {
 enum class Kernels : uint8_t {
   best,      // the fastest the processor runs: AVX2 on x86-64 where it has it, else baseline
   baseline,  // the portable build (SSE2 on x86-64), on any processor
-  scalar,    // three scalar lanes per point, no vectors: all that WebAssembly builds
+  scalar,    // three scalar lanes per point, no vectors: WebAssembly without SIMD
+  paired,    // two edges per two-lane vector: WebAssembly with SIMD (any choice but scalar)
 };
 
 }  // namespace dbss
