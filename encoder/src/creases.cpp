@@ -6,6 +6,7 @@
 #include <unordered_set>
 
 #include "dbss/decoder/topology.h"
+#include "dbss/encoder/crease_align.h"
 #include "dbss/encoder/point_distances.h"
 
 namespace dbss {
@@ -41,6 +42,12 @@ format::Creases find_creases(TriangleMesh& mesh, const PointIndex& points, const
     if (stats) *stats = st;
     return out;
   }
+  // Edges along the features first: the test below only finds crease
+  // edges the control mesh has.
+  AlignStats aligned;
+  std::vector<std::array<uint32_t, 2>> chains;
+  align_to_features(mesh, points, o, &aligned, &chains);
+  st.aligned = aligned.snapped, st.align_flips = aligned.flips;
   auto built = build_topology(static_cast<uint32_t>(mesh.vertex_count()), mesh.triangles);
   if (!built.ok()) return out;
   const LevelTopology& t = built.value();
@@ -52,6 +59,15 @@ format::Creases find_creases(TriangleMesh& mesh, const PointIndex& points, const
   for (uint32_t e = 0; e < t.edge_count(); ++e) {
     const uint32_t h = t.edge_half[e], tw = t.twin[h];
     if (tw == kNoHalfEdge) continue;
+    {
+      // An edge of a chain along a feature line: its ends are on the line already.
+      const uint32_t a = std::min(t.triangles[h], t.triangles[next_half(h)]), b = std::max(t.triangles[h], t.triangles[next_half(h)]);
+      if (std::binary_search(chains.begin(), chains.end(), std::array<uint32_t, 2>{a, b})) {
+        crease[e] = 1;
+        ++st.chain_edges;
+        continue;
+      }
+    }
     const uint32_t u = t.triangles[h], w = t.triangles[next_half(h)];
     const V3 pu = at(mesh.positions, u), pw = at(mesh.positions, w);
     const V3 pc1 = at(mesh.positions, t.triangles[prev_half(h)]), pd = at(mesh.positions, t.triangles[prev_half(tw)]);

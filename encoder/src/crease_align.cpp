@@ -1,0 +1,369 @@
+#include "dbss/encoder/crease_align.h"
+
+#include <Eigen/Dense>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <unordered_map>
+#include <vector>
+
+#include "dbss/encoder/point_distances.h"
+#include "mesh_geometry.h"
+
+namespace dbss {
+
+using namespace mesh_geometry;
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+// Points whose normals are estimated from this many neighbours: enough to
+// average sampling noise, few enough that only a narrow band along a
+// feature sees both sides.
+constexpr size_t kNormalPoints = 12;
+// How far a vertex moves onto a line or a corner, in its mean edge
+// lengths: QEM crowds vertices near features, up to half an edge beside
+// them; the nearest go first, and a move that makes a triangle poorer than
+// kMinQuality or turns it over is not made.
+constexpr double kLineReach = 0.5, kCornerReach = 0.8, kMinQuality = 0.15;
+// The fewest points a vertex's neighbourhood holds.
+constexpr size_t kNeighbourhood = 64;
+// Two planes are one plane of the part when their normals are this close.
+const double kSamePlane = std::cos(15 * kPi / 180);
+// A chain edge runs along its line within this angle.
+const double kAlong = std::sin(20 * kPi / 180);
+
+V3 unit(V3 v) {
+  const double l = std::sqrt(dot(v, v));
+  return l > 0 ? V3{v[0] / l, v[1] / l, v[2] / l} : V3{0, 0, 0};
+}
+
+double quality(V3 a, V3 b, V3 c) {
+  const double e = dot(sub(b, a), sub(b, a)) + dot(sub(c, b), sub(c, b)) + dot(sub(a, c), sub(a, c));
+  if (!(e > 0)) return 0;
+  const V3 n = cross(sub(b, a), sub(c, a));
+  return 2 * std::sqrt(3.0) * std::sqrt(dot(n, n)) / e;
+}
+
+uint64_t key(uint32_t u, uint32_t v) { return (uint64_t{u} << 32) | v; }
+
+// Unit normals of the points, estimated when first asked for.
+class PointNormals {
+ public:
+  explicit PointNormals(const PointIndex& points) : points_(points), normal_(3 * points.points().size()), known_(points.points().size(), 0) {}
+  V3 operator()(uint32_t i) {
+    if (!known_[i]) {
+      const float* q = &points_.points().xyz[3 * size_t{i}];
+      uint32_t near[kNormalPoints];
+      float dist2[kNormalPoints];
+      const size_t found = points_.nearest_k(q, kNormalPoints, near, dist2);
+      const PointPlane p = fit_plane(points_.points(), near, found);
+      for (int a = 0; a < 3; ++a) normal_[3 * size_t{i} + a] = p.normal[a];
+      known_[i] = 1;
+    }
+    return {normal_[3 * size_t{i}], normal_[3 * size_t{i} + 1], normal_[3 * size_t{i} + 2]};
+  }
+
+ private:
+  const PointIndex& points_;
+  std::vector<double> normal_;
+  std::vector<uint8_t> known_;
+};
+
+// What the points around a vertex show: nothing, two planes (a line) or
+// three (a corner).
+struct Feature {
+  int planes = 0;
+  V3 normal[3]{}, point[3]{};
+  V3 target{};  // nearest point of the line, or the corner
+  V3 dir{};     // the line's direction (two planes)
+};
+
+V3 point_of(const PointCloud& pc, uint32_t i) { return {pc.xyz[3 * size_t{i}], pc.xyz[3 * size_t{i} + 1], pc.xyz[3 * size_t{i} + 2]}; }
+
+// Splits `near` into k groups seeded by the normals `seed`, refits each
+// group's plane and reassigns points to their nearest plane twice; true
+// when every group is a flat patch (not a strip along the feature) and the
+// planes meet pairwise at more than the angle.
+bool fit_groups(const PointCloud& pc, const std::vector<uint32_t>& near, PointNormals& normals, const V3* seed, int k,
+                double radius, double min_cos, const CreaseOptions& o, Feature& f) {
+  std::vector<uint32_t> group[3];
+  for (uint32_t i : near) {
+    const V3 n = normals(i);
+    int best = 0;
+    for (int j = 1; j < k; ++j)
+      if (std::abs(dot(n, seed[j])) > std::abs(dot(n, seed[best]))) best = j;
+    group[best].push_back(i);
+  }
+  PointPlane fit[3];
+  for (int round = 0; round < 3; ++round) {
+    for (int j = 0; j < k; ++j) {
+      if (group[j].size() < o.min_side_points) return false;
+      fit[j] = fit_plane(pc, group[j].data(), group[j].size());
+    }
+    if (round == 2) break;
+    for (int j = 0; j < k; ++j) group[j].clear();
+    for (uint32_t i : near) {
+      const V3 p = point_of(pc, i);
+      int best = 0;
+      double best_d = INFINITY;
+      for (int j = 0; j < k; ++j) {
+        const double d = std::abs(dot(sub(p, fit[j].point), fit[j].normal));
+        if (d < best_d) best_d = d, best = j;
+      }
+      group[best].push_back(i);
+    }
+  }
+  static bool dbg = std::getenv("DBSS_ALIGN_DEBUG2");
+  if (dbg) for (int j = 0; j < k; ++j) std::fprintf(stderr, "  k%d group %d: %zu pts rms %.4f r %.4f var1 %.5f n %.2f %.2f %.2f\n", k, j, group[j].size(), std::sqrt(fit[j].variance[0]), radius, std::sqrt(fit[j].variance[1]), fit[j].normal[0], fit[j].normal[1], fit[j].normal[2]);
+  for (int j = 0; j < k; ++j) {
+    if (std::sqrt(std::max(0.0, fit[j].variance[0])) > o.flatness * radius) return false;
+    // A patch, not the strip of points along the feature line.
+    if (fit[j].variance[1] < std::pow(0.15 * radius, 2)) return false;
+    for (int i = 0; i < j; ++i)
+      if (std::abs(dot(fit[i].normal, fit[j].normal)) > min_cos) return false;
+  }
+  f.planes = k;
+  for (int j = 0; j < k; ++j) f.normal[j] = fit[j].normal, f.point[j] = fit[j].point;
+  return true;
+}
+
+// The point on the planes nearest `v`: with two planes, their line's point
+// nearest v; with three, their common point.  False when ill-conditioned.
+bool solve_target(Feature& f, const V3& v) {
+  Eigen::Matrix3d a;
+  Eigen::Vector3d b;
+  for (int j = 0; j < f.planes; ++j) {
+    for (int c = 0; c < 3; ++c) a(j, c) = f.normal[j][c];
+    b[j] = dot(f.normal[j], f.point[j]);
+  }
+  if (f.planes == 2) {
+    f.dir = unit(cross(f.normal[0], f.normal[1]));
+    for (int c = 0; c < 3; ++c) a(2, c) = f.dir[c];
+    b[2] = dot(f.dir, v);
+  }
+  Eigen::FullPivLU<Eigen::Matrix3d> lu(a);
+  if (lu.rank() < 3) return false;
+  const Eigen::Vector3d x = lu.solve(b);
+  if (!x.allFinite()) return false;
+  f.target = {x[0], x[1], x[2]};
+  return true;
+}
+
+Feature classify(const PointIndex& points, PointNormals& normals, const V3& v, double radius, double min_cos,
+                 const CreaseOptions& o, std::vector<uint32_t>& near) {
+  Feature f;
+  const float q[3] = {static_cast<float>(v[0]), static_cast<float>(v[1]), static_cast<float>(v[2])};
+  // At least kNeighbourhood points: QEM leaves short edges along features,
+  // where 0.6 of an edge holds too few points to fit two planes.
+  {
+    uint32_t idx[kNeighbourhood];
+    float dist2[kNeighbourhood];
+    const size_t found = points.nearest_k(q, kNeighbourhood, idx, dist2);
+    if (found == kNeighbourhood) radius = std::max(radius, double{std::sqrt(dist2[found - 1])});
+  }
+  points.within(q, static_cast<float>(radius), near);
+  if (near.size() < 2 * o.min_side_points) return f;
+  std::sort(near.begin(), near.end());  // the index's order is not the seeds' business
+  const PointCloud& pc = points.points();
+  // Seeds: normals as far apart as the neighbourhood has (a normal of a
+  // point on the feature is a blend of both sides; the extremes are not).
+  const auto least_aligned = [&](auto score) {
+    uint32_t best = near[0];
+    double best_s = INFINITY;
+    for (uint32_t i : near) {
+      const double s = score(normals(i));
+      if (s < best_s) best_s = s, best = i;
+    }
+    return normals(best);
+  };
+  V3 seed[3];
+  seed[0] = normals(near[0]);
+  seed[1] = least_aligned([&](V3 n) { return std::abs(dot(n, seed[0])); });
+  seed[0] = least_aligned([&](V3 n) { return std::abs(dot(n, seed[1])); });
+  static bool dbg = std::getenv("DBSS_ALIGN_DEBUG2");
+  if (dbg) std::fprintf(stderr, "classify %zu pts r %.3f seeds dot %.3f\n", near.size(), radius, dot(seed[0], seed[1]));
+  if (std::abs(dot(seed[0], seed[1])) > min_cos) return f;  // one smooth sheet
+  seed[2] = least_aligned([&](V3 n) { return std::max(std::abs(dot(n, seed[0])), std::abs(dot(n, seed[1]))); });
+  if (std::max(std::abs(dot(seed[2], seed[0])), std::abs(dot(seed[2], seed[1]))) <= min_cos &&
+      fit_groups(pc, near, normals, seed, 3, radius, min_cos, o, f) && solve_target(f, v))
+    return f;
+  f = Feature{};
+  if (fit_groups(pc, near, normals, seed, 2, radius, min_cos, o, f) && solve_target(f, v)) return f;
+  return Feature{};
+}
+
+// Planes `a` and `b` have in common (same normal, each other's points on it).
+int shared_planes(const Feature& a, const Feature& b, double tolerance, int* which = nullptr) {
+  int shared = 0;
+  for (int i = 0; i < a.planes; ++i)
+    for (int j = 0; j < b.planes; ++j)
+      if (std::abs(dot(a.normal[i], b.normal[j])) > kSamePlane &&
+          std::abs(dot(sub(b.point[j], a.point[i]), a.normal[i])) < tolerance) {
+        if (which) which[shared] = i;
+        ++shared;
+        break;
+      }
+  return shared;
+}
+
+}  // namespace
+
+void align_to_features(TriangleMesh& m, const PointIndex& points, const CreaseOptions& o, AlignStats* stats,
+                       std::vector<std::array<uint32_t, 2>>* chains) {
+  if (chains) chains->clear();
+  AlignStats st;
+  if (!(o.angle_degrees > 0) || m.triangle_count() == 0 || points.points().size() == 0) {
+    if (stats) *stats = st;
+    return;
+  }
+  const uint32_t n = static_cast<uint32_t>(m.vertex_count());
+  const double min_cos = std::cos(o.angle_degrees * kPi / 180);
+  // Triangles at each vertex.
+  std::vector<uint32_t> offset(n + 1, 0), at;
+  for (uint32_t v : m.triangles) ++offset[v + 1];
+  for (uint32_t v = 0; v < n; ++v) offset[v + 1] += offset[v];
+  at.resize(offset[n]);
+  {
+    std::vector<uint32_t> fill(offset.begin(), offset.end() - 1);
+    for (uint32_t f = 0; f < m.triangle_count(); ++f)
+      for (int k = 0; k < 3; ++k) at[fill[m.triangles[3 * f + k]]++] = f;
+  }
+  std::vector<double> shortest(n, INFINITY), mean_edge(n, 0);
+  std::vector<uint32_t> edges(n, 0);
+  for (uint32_t f = 0; f < m.triangle_count(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      const uint32_t u = m.triangles[3 * f + k], w = m.triangles[3 * f + (k + 1) % 3];
+      const double l = std::sqrt(dot(sub(pos(m, u), pos(m, w)), sub(pos(m, u), pos(m, w))));
+      shortest[u] = std::min(shortest[u], l), shortest[w] = std::min(shortest[w], l);
+      mean_edge[u] += l, mean_edge[w] += l, ++edges[u], ++edges[w];
+    }
+
+  // 1. What the points show around each vertex, at QEM's positions.
+  PointNormals normals(points);
+  std::vector<Feature> feature(n);
+  std::vector<uint32_t> near;
+  for (uint32_t v = 0; v < n; ++v) {
+    if (edges[v] == 0) continue;
+    feature[v] = classify(points, normals, pos(m, v), 0.6 * mean_edge[v] / edges[v], min_cos, o, near);
+    st.line_vertices += feature[v].planes == 2;
+    st.corner_vertices += feature[v].planes == 3;
+  }
+
+  // 2. Moves onto the features: corners first, then the vertices nearest
+  // their line (each move judged against the moves already made).
+  std::vector<uint32_t> order;
+  std::vector<double> move(n, INFINITY);
+  for (uint32_t v = 0; v < n; ++v)
+    if (feature[v].planes) {
+      move[v] = std::sqrt(dot(sub(feature[v].target, pos(m, v)), sub(feature[v].target, pos(m, v))));
+      if (move[v] <= (feature[v].planes == 3 ? kCornerReach : kLineReach) * mean_edge[v] / edges[v]) order.push_back(v);
+    }
+  std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
+    if (feature[a].planes != feature[b].planes) return feature[a].planes > feature[b].planes;
+    if (move[a] / shortest[a] != move[b] / shortest[b]) return move[a] / shortest[a] < move[b] / shortest[b];
+    return a < b;
+  });
+  if (std::getenv("DBSS_ALIGN_DEBUG")) {
+    size_t far2 = 0, far3 = 0, hist[6] = {};
+    for (uint32_t v = 0; v < n; ++v) if (feature[v].planes == 2) ++hist[std::min<size_t>(5, size_t(10 * move[v] * edges[v] / mean_edge[v]))];
+    std::fprintf(stderr, "move/mean edge in tenths: %zu %zu %zu %zu %zu %zu+\n", hist[0], hist[1], hist[2], hist[3], hist[4], hist[5]);
+    for (uint32_t v = 0; v < n; ++v) far2 += feature[v].planes == 2 && move[v] > kLineReach * mean_edge[v] / edges[v], far3 += feature[v].planes == 3 && move[v] > kCornerReach * mean_edge[v] / edges[v];
+    std::fprintf(stderr, "align: %u vertices, %zu line, %zu corner, %zu candidates, too far %zu line %zu corner\n", n, st.line_vertices, st.corner_vertices, order.size(), far2, far3);
+  }
+  std::vector<uint8_t> snapped(n, 0);
+  std::vector<V3> corners;  // taken: a second vertex on one corner would make a null edge
+  for (uint32_t v : order) {
+    const Feature& f = feature[v];
+    if (f.planes == 3) {
+      bool taken = false;
+      for (const V3& c : corners) taken = taken || dot(sub(c, f.target), sub(c, f.target)) < std::pow(0.25 * shortest[v], 2);
+      if (taken) continue;
+    }
+    const V3 old = pos(m, v);
+    bool ok = true;
+    std::vector<V3> old_normals;
+    for (uint32_t j = offset[v]; j < offset[v + 1]; ++j) old_normals.push_back(unit(face_normal(m, at[j])));
+    for (int a = 0; a < 3; ++a) m.positions[3 * size_t{v} + a] = static_cast<float>(f.target[a]);
+    for (uint32_t j = offset[v]; j < offset[v + 1] && ok; ++j) {
+      const uint32_t t = at[j];
+      const double q = quality(pos(m, m.triangles[3 * t]), pos(m, m.triangles[3 * t + 1]), pos(m, m.triangles[3 * t + 2]));
+      ok = q > kMinQuality && dot(unit(face_normal(m, t)), old_normals[j - offset[v]]) > 0;
+    }
+    if (!ok) {
+      for (int a = 0; a < 3; ++a) m.positions[3 * size_t{v} + a] = static_cast<float>(old[a]);
+      continue;
+    }
+    snapped[v] = 1;
+    ++st.snapped;
+    if (f.planes == 3) corners.push_back(f.target);
+  }
+
+  // 3. Flips: an edge c-d whose two triangles' far corners u, w lie on one
+  // line (two planes in common, the segment along them) becomes u-w, so
+  // the line runs along control edges instead of zig-zagging across them.
+  const auto chain = [&](uint32_t u, uint32_t w) {
+    if (!snapped[u] || !snapped[w]) return false;
+    const V3 d = sub(pos(m, w), pos(m, u));
+    const double len = std::sqrt(dot(d, d));
+    if (!(len > 0)) return false;
+    int which[3];
+    if (shared_planes(feature[u], feature[w], 0.1 * len, which) < 2) return false;
+    for (int s = 0; s < 2; ++s)
+      if (std::abs(dot(d, feature[u].normal[which[s]])) > kAlong * len) return false;
+    return true;
+  };
+  std::unordered_map<uint64_t, uint32_t> edge;
+  std::vector<int> valence(n, 0);
+  for (uint32_t f = 0; f < m.triangle_count(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      edge[key(m.triangles[3 * f + k], m.triangles[3 * f + (k + 1) % 3])] = f;
+      ++valence[m.triangles[3 * f + k]];  // triangles at a vertex: its valence on a closed mesh
+    }
+  const auto third = [&](uint32_t f, uint32_t a, uint32_t b) {
+    for (int k = 0; k < 3; ++k)
+      if (m.triangles[3 * f + k] != a && m.triangles[3 * f + k] != b) return m.triangles[3 * f + k];
+    return a;
+  };
+  for (int pass = 0; pass < 4; ++pass) {
+    size_t flips = 0;
+    for (uint32_t f = 0; f < m.triangle_count(); ++f)
+      for (int k = 0; k < 3; ++k) {
+        const uint32_t c = m.triangles[3 * f + k], d = m.triangles[3 * f + (k + 1) % 3];
+        const auto twin = edge.find(key(d, c));
+        if (twin == edge.end()) continue;
+        const uint32_t g = twin->second, u = third(f, c, d), w = third(g, c, d);
+        if (u == w || edge.count(key(u, w)) || edge.count(key(w, u))) continue;
+        if (valence[c] <= 3 || valence[d] <= 3 || chain(c, d) || !chain(u, w)) continue;
+        const V3 pu = pos(m, u), pw = pos(m, w), pc = pos(m, c), pd = pos(m, d);
+        const V3 old = unit(V3{face_normal(m, f)[0] + face_normal(m, g)[0], face_normal(m, f)[1] + face_normal(m, g)[1],
+                               face_normal(m, f)[2] + face_normal(m, g)[2]});
+        if (quality(pu, pc, pw) < 0.05 || quality(pw, pd, pu) < 0.05) continue;
+        if (dot(unit(cross(sub(pc, pu), sub(pw, pu))), old) <= 0 || dot(unit(cross(sub(pd, pw), sub(pu, pw))), old) <= 0) continue;
+        // f = (c, d, u) -> (u, c, w); g = (d, c, w) -> (w, d, u).
+        edge.erase(key(c, d)), edge.erase(key(d, c));
+        m.triangles[3 * f] = u, m.triangles[3 * f + 1] = c, m.triangles[3 * f + 2] = w;
+        m.triangles[3 * g] = w, m.triangles[3 * g + 1] = d, m.triangles[3 * g + 2] = u;
+        edge[key(u, c)] = f, edge[key(c, w)] = f, edge[key(w, u)] = f;
+        edge[key(w, d)] = g, edge[key(d, u)] = g, edge[key(u, w)] = g;
+        --valence[c], --valence[d], ++valence[u], ++valence[w];
+        ++flips;
+        k = 3;  // f changed: on to the next triangle
+      }
+    st.flips += flips;
+    if (flips == 0) break;
+  }
+  if (chains) {
+    chains->clear();
+    for (const auto& [uv, f] : edge) {
+      const uint32_t u = static_cast<uint32_t>(uv >> 32), w = static_cast<uint32_t>(uv);
+      if (u < w && edge.count(key(w, u)) && chain(u, w)) chains->push_back({u, w});
+    }
+    std::sort(chains->begin(), chains->end());
+  }
+  if (stats) *stats = st;
+}
+
+}  // namespace dbss
