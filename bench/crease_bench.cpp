@@ -19,6 +19,7 @@
 
 #include "crease_shapes.h"
 #include "dbss/encoder/encode.h"
+#include "dbss/encoder/levels.h"
 #include "dbss/encoder/point_input.h"
 #include "dbss/io/geometry_files.h"
 #include "dbss/measure/mesh_distance.h"
@@ -111,12 +112,53 @@ int main(int argc, char** argv) {
       auto e = dbss::encode_points(pc, eo);
       if (!e.ok()) return std::fprintf(stderr, "crease_bench: %s: %s\n", shape.c_str(), e.status().to_string().c_str()), 1;
       const dbss::Encoding& enc = e.value();
+      if (std::getenv("CREASE_BENCH_ORACLE") && name == "cube") {
+        // Experiment: the cube's exact surface along each normal, no clamp.
+        dbss::LevelSampler oracle;
+        oracle.sample = [](uint32_t, const double p[3], const double n[3], double half) {
+          dbss::Sample s;
+          double best = INFINITY;
+          for (int k = 0; k < 3; ++k)
+            for (double side : {-1.0, 1.0}) {
+              if (std::abs(n[k]) < 1e-12) continue;
+              const double t = (side - p[k]) / n[k];
+              bool in = true;
+              for (int j = 0; j < 3; ++j)
+                if (j != k) in = in && std::abs(p[j] + t * n[j]) <= 1 + 1e-9;
+              if (in && std::abs(t) < std::abs(best)) best = t;
+            }
+          s.distance = std::isfinite(best) ? best : 0;
+          (void)half;
+          return s;
+        };
+        dbss::LevelEncodeOptions lo;
+        lo.levels = levels;
+        lo.step = enc.step;
+        lo.creases = enc.contents.creases;
+        auto lv = dbss::encode_levels(enc.control, oracle, lo);
+        for (uint32_t l = 0; l <= levels && lv.ok(); ++l) {
+          const dbss::TriangleMesh m{lv.value().positions[l], lv.value().triangles[l]};
+          const dbss::MeshDistance d = dbss::mesh_distance(m, truth, {samples, 1, 2});
+          std::printf("oracle %s level %u: error %.3e Hausdorff %.2f%%\n", on ? "on" : "off", l, d.mean() / diag, 100 * d.max() / diag);
+        }
+      }
       runs[on].stats = enc.creases;
       runs[on].length = crease_length(enc.control, enc.contents.creases);
       for (const auto& t : enc.toc)
         if (t.type == dbss::format::kCrea) runs[on].tag_bytes = t.length + 12 + 16;  // data, frame, INDX entry
       for (uint32_t l = 0; l <= enc.level_count; ++l) {
         const dbss::TriangleMesh m{enc.levels.positions[l], enc.levels.triangles[l]};
+        if (const char* dump = std::getenv("CREASE_BENCH_DUMP")) {
+          const std::string path = std::string(dump) + "/" + shape + (on ? "-on-" : "-off-") + std::to_string(l) + ".off";
+          if (FILE* f = std::fopen(path.c_str(), "w")) {
+            std::fprintf(f, "OFF\n%zu %zu 0\n", m.vertex_count(), m.triangle_count());
+            for (size_t i = 0; i < m.vertex_count(); ++i)
+              std::fprintf(f, "%.9g %.9g %.9g\n", m.positions[3 * i], m.positions[3 * i + 1], m.positions[3 * i + 2]);
+            for (size_t i = 0; i < m.triangle_count(); ++i)
+              std::fprintf(f, "3 %u %u %u\n", m.triangles[3 * i], m.triangles[3 * i + 1], m.triangles[3 * i + 2]);
+            std::fclose(f);
+          }
+        }
         const dbss::MeshDistance d = dbss::mesh_distance(m, truth, {samples, 1, 2});
         runs[on].bytes.push_back(dbss::prefix_bytes(enc, l));
         runs[on].mean.push_back(d.mean() / diag);

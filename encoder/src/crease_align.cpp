@@ -211,6 +211,19 @@ int shared_planes(const Feature& a, const Feature& b, double tolerance, int* whi
 
 }  // namespace
 
+std::vector<float> estimate_point_normals(const PointIndex& points) {
+  const size_t n = points.points().size();
+  std::vector<float> out(3 * n);
+  uint32_t near[kNormalPoints];
+  float dist2[kNormalPoints];
+  for (size_t i = 0; i < n; ++i) {
+    const size_t found = points.nearest_k(&points.points().xyz[3 * i], kNormalPoints, near, dist2);
+    const PointPlane p = fit_plane(points.points(), near, found);
+    for (int a = 0; a < 3; ++a) out[3 * i + a] = static_cast<float>(p.normal[a]);
+  }
+  return out;
+}
+
 void align_to_features(TriangleMesh& m, const PointIndex& points, const CreaseOptions& o, AlignStats* stats,
                        std::vector<std::array<uint32_t, 2>>* chains) {
   if (chains) chains->clear();

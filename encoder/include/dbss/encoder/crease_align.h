@@ -40,4 +40,10 @@ struct AlignStats {
 void align_to_features(TriangleMesh& mesh, const PointIndex& points, const CreaseOptions& options,
                        AlignStats* stats = nullptr, std::vector<std::array<uint32_t, 2>>* chains = nullptr);
 
+// A unit normal per point (3 floats each, sign arbitrary): the least-squares
+// plane of its 12 nearest points.  Next to a feature the normal blends the
+// two sides within about a point spacing of the line.  For one-sided
+// sampling (surface_fit.h's PointSides).
+std::vector<float> estimate_point_normals(const PointIndex& points);
+
 }  // namespace dbss
