@@ -158,6 +158,15 @@ int main(int argc, char** argv) {
               std::fprintf(f, "3 %u %u %u\n", m.triangles[3 * i], m.triangles[3 * i + 1], m.triangles[3 * i + 2]);
             std::fclose(f);
           }
+          if (l == 0 && !enc.contents.creases.empty())
+            if (FILE* f = std::fopen((std::string(dump) + "/" + shape + "-creases.txt").c_str(), "w")) {
+              auto t = dbss::build_topology(static_cast<uint32_t>(m.vertex_count()), m.triangles).value();
+              for (uint32_t i = 0; i < t.edge_count(); ++i)
+                if (enc.contents.creases.edge[i]) std::fprintf(f, "%u %u\n", t.triangles[t.edge_half[i]], t.triangles[dbss::next_half(t.edge_half[i])]);
+              for (uint32_t v = 0; v < t.vertex_count; ++v)
+                if (enc.contents.creases.corner[v]) std::fprintf(f, "c %u\n", v);
+              std::fclose(f);
+            }
         }
         const dbss::MeshDistance d = dbss::mesh_distance(m, truth, {samples, 1, 2});
         runs[on].bytes.push_back(dbss::prefix_bytes(enc, l));

@@ -49,18 +49,49 @@ double quality(V3 a, V3 b, V3 c) {
 
 uint64_t key(uint32_t u, uint32_t v) { return (uint64_t{u} << 32) | v; }
 
+V3 point_of(const PointCloud& pc, uint32_t i) { return {pc.xyz[3 * size_t{i}], pc.xyz[3 * size_t{i} + 1], pc.xyz[3 * size_t{i} + 2]}; }
+
+// A point's normal from its kNormalPoints nearest: the plane through the
+// point and two of them that most of the others lie on (within a tenth of
+// the neighbourhood's radius), refitted to those.  Beside a crease the plain
+// least-squares plane of all of them blends the two sides; this one takes
+// the side most of the neighbours are on, up to the feature line.
+std::array<double, 3> robust_normal(const PointIndex& points, uint32_t i) {
+  const PointCloud& pc = points.points();
+  uint32_t near[kNormalPoints], inliers[kNormalPoints];
+  float dist2[kNormalPoints];
+  const size_t found = points.nearest_k(&pc.xyz[3 * size_t{i}], kNormalPoints, near, dist2);
+  if (found < 3) return fit_plane(pc, near, found).normal;
+  const V3 p = point_of(pc, i);
+  const double tol = 0.1 * std::sqrt(double{dist2[found - 1]});
+  size_t best = 0;
+  V3 best_n{};
+  for (size_t a = 0; a < found; ++a)
+    for (size_t b = a + 1; b < found; ++b) {
+      const V3 da = sub(point_of(pc, near[a]), p), db = sub(point_of(pc, near[b]), p);
+      const V3 c = cross(da, db);
+      const double l = std::sqrt(dot(c, c));
+      if (!(l > 0.3 * std::sqrt(dot(da, da) * dot(db, db)))) continue;  // nearly in line: no plane
+      const V3 nn = {c[0] / l, c[1] / l, c[2] / l};
+      size_t count = 0;
+      for (size_t j = 0; j < found; ++j) count += std::abs(dot(sub(point_of(pc, near[j]), p), nn)) <= tol;
+      if (count > best) best = count, best_n = nn;
+    }
+  if (best < 3) return fit_plane(pc, near, found).normal;
+  size_t m = 0;
+  for (size_t j = 0; j < found; ++j)
+    if (std::abs(dot(sub(point_of(pc, near[j]), p), best_n)) <= tol) inliers[m++] = near[j];
+  return fit_plane(pc, inliers, m).normal;
+}
+
 // Unit normals of the points, estimated when first asked for.
 class PointNormals {
  public:
   explicit PointNormals(const PointIndex& points) : points_(points), normal_(3 * points.points().size()), known_(points.points().size(), 0) {}
   V3 operator()(uint32_t i) {
     if (!known_[i]) {
-      const float* q = &points_.points().xyz[3 * size_t{i}];
-      uint32_t near[kNormalPoints];
-      float dist2[kNormalPoints];
-      const size_t found = points_.nearest_k(q, kNormalPoints, near, dist2);
-      const PointPlane p = fit_plane(points_.points(), near, found);
-      for (int a = 0; a < 3; ++a) normal_[3 * size_t{i} + a] = p.normal[a];
+      const V3 nn = robust_normal(points_, i);
+      for (int a = 0; a < 3; ++a) normal_[3 * size_t{i} + a] = nn[a];
       known_[i] = 1;
     }
     return {normal_[3 * size_t{i}], normal_[3 * size_t{i} + 1], normal_[3 * size_t{i} + 2]};
@@ -80,8 +111,6 @@ struct Feature {
   V3 target{};  // nearest point of the line, or the corner
   V3 dir{};     // the line's direction (two planes)
 };
-
-V3 point_of(const PointCloud& pc, uint32_t i) { return {pc.xyz[3 * size_t{i}], pc.xyz[3 * size_t{i} + 1], pc.xyz[3 * size_t{i} + 2]}; }
 
 // Splits `near` into k groups seeded by the normals `seed`, refits each
 // group's plane and reassigns points to their nearest plane twice; true
@@ -214,12 +243,9 @@ int shared_planes(const Feature& a, const Feature& b, double tolerance, int* whi
 std::vector<float> estimate_point_normals(const PointIndex& points) {
   const size_t n = points.points().size();
   std::vector<float> out(3 * n);
-  uint32_t near[kNormalPoints];
-  float dist2[kNormalPoints];
   for (size_t i = 0; i < n; ++i) {
-    const size_t found = points.nearest_k(&points.points().xyz[3 * i], kNormalPoints, near, dist2);
-    const PointPlane p = fit_plane(points.points(), near, found);
-    for (int a = 0; a < 3; ++a) out[3 * i + a] = static_cast<float>(p.normal[a]);
+    const V3 nn = robust_normal(points, static_cast<uint32_t>(i));
+    for (int a = 0; a < 3; ++a) out[3 * i + a] = static_cast<float>(nn[a]);
   }
   return out;
 }

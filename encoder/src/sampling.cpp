@@ -49,15 +49,23 @@ Sample sample_displacement(const PointIndex& index, const double pd[3], const do
   using Cand = SampleScratch::Candidate;
   std::vector<Cand>& cyl = scratch.cylinder;
   cyl.clear();
-  for (int pass = sides ? 0 : 1; pass < 2 && cyl.size() < 3; ++pass) {
-    if (pass == 1) sides = nullptr;  // too few on the line's side: both
+  // One-sided: the points beside a feature line often belong to the other
+  // side, so the line's own side may need a wider cylinder; with too few
+  // there either, both sides (and the fit from both).
+  for (int pass = sides ? 0 : 2; pass < 3 && cyl.size() < 3; ++pass) {
+    const double r = pass == 1 ? 2 * radius : radius;
+    if (pass == 1) index.within(q, static_cast<float>(std::sqrt(r * r + half_length * half_length)), near);
+    if (pass == 2 && sides) {
+      sides = nullptr;
+      index.within(q, static_cast<float>(std::sqrt(radius * radius + half_length * half_length)), near);
+    }
     cyl.clear();
     for (uint32_t i : near) {
       if (sides && !sides->agrees(i, nd)) continue;
       const V x = point(i);
       const double t = (x - p).dot(n);
       const double h = (x - p - t * n).norm();
-      if (h < radius && std::abs(t) < half_length) cyl.push_back({h, t, i});
+      if (h < r && std::abs(t) < half_length) cyl.push_back({h, t, i});
     }
   }
   auto finish = [&](double d, SampleSource src) {
