@@ -9,7 +9,9 @@
 //
 // usage: crease_bench [--points N] [--levels L] [--angle DEG] [--samples S] [--skip-absent] [--no-shape] SHAPE...
 //   --no-shape: without the control mesh's shaping pass (edge flips, relaxation)
-//   SHAPE: cube, cylinder, roof, or a mesh file (absent with --skip-absent: exit 77 unless CI=true)
+//   CREASE_BENCH_DUMP=DIR (environment): each level written to DIR/SHAPE-{on,off}-L.off and
+//   the level-0 tags (edge ends, "c" corners) to DIR/SHAPE-creases.txt, for a closer look
+//   SHAPE: cube, cylinder, roof, sphere, torus (smooth: no crease should be found), or a mesh file (absent with --skip-absent: exit 77 unless CI=true)
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -18,8 +20,8 @@
 #include <vector>
 
 #include "crease_shapes.h"
+#include "shapes.h"
 #include "dbss/encoder/encode.h"
-#include "dbss/encoder/levels.h"
 #include "dbss/encoder/point_input.h"
 #include "dbss/io/geometry_files.h"
 #include "dbss/measure/mesh_distance.h"
@@ -87,6 +89,8 @@ int main(int argc, char** argv) {
     if (name == "cube") truth = dbss::test::cube();
     else if (name == "cylinder") truth = dbss::test::capped_cylinder(64, 9);
     else if (name == "roof") truth = dbss::test::roof_block(8);
+    else if (name == "sphere") truth = dbss::test::uv_sphere(48, 64);
+    else if (name == "torus") truth = dbss::test::torus(96, 48);
     else {
       if (!std::filesystem::exists(name)) {
         if (skip_absent && !(ci != nullptr && std::string(ci) == "true"))
@@ -112,36 +116,6 @@ int main(int argc, char** argv) {
       auto e = dbss::encode_points(pc, eo);
       if (!e.ok()) return std::fprintf(stderr, "crease_bench: %s: %s\n", shape.c_str(), e.status().to_string().c_str()), 1;
       const dbss::Encoding& enc = e.value();
-      if (std::getenv("CREASE_BENCH_ORACLE") && name == "cube") {
-        // Experiment: the cube's exact surface along each normal, no clamp.
-        dbss::LevelSampler oracle;
-        oracle.sample = [](uint32_t, const double p[3], const double n[3], double half) {
-          dbss::Sample s;
-          double best = INFINITY;
-          for (int k = 0; k < 3; ++k)
-            for (double side : {-1.0, 1.0}) {
-              if (std::abs(n[k]) < 1e-12) continue;
-              const double t = (side - p[k]) / n[k];
-              bool in = true;
-              for (int j = 0; j < 3; ++j)
-                if (j != k) in = in && std::abs(p[j] + t * n[j]) <= 1 + 1e-9;
-              if (in && std::abs(t) < std::abs(best)) best = t;
-            }
-          s.distance = std::isfinite(best) ? best : 0;
-          (void)half;
-          return s;
-        };
-        dbss::LevelEncodeOptions lo;
-        lo.levels = levels;
-        lo.step = enc.step;
-        lo.creases = enc.contents.creases;
-        auto lv = dbss::encode_levels(enc.control, oracle, lo);
-        for (uint32_t l = 0; l <= levels && lv.ok(); ++l) {
-          const dbss::TriangleMesh m{lv.value().positions[l], lv.value().triangles[l]};
-          const dbss::MeshDistance d = dbss::mesh_distance(m, truth, {samples, 1, 2});
-          std::printf("oracle %s level %u: error %.3e Hausdorff %.2f%%\n", on ? "on" : "off", l, d.mean() / diag, 100 * d.max() / diag);
-        }
-      }
       runs[on].stats = enc.creases;
       runs[on].length = crease_length(enc.control, enc.contents.creases);
       for (const auto& t : enc.toc)

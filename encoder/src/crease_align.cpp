@@ -4,8 +4,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 #include <unordered_map>
 #include <vector>
 
@@ -145,8 +143,6 @@ bool fit_groups(const PointCloud& pc, const std::vector<uint32_t>& near, PointNo
       group[best].push_back(i);
     }
   }
-  static bool dbg = std::getenv("DBSS_ALIGN_DEBUG2");
-  if (dbg) for (int j = 0; j < k; ++j) std::fprintf(stderr, "  k%d group %d: %zu pts rms %.4f r %.4f var1 %.5f n %.2f %.2f %.2f\n", k, j, group[j].size(), std::sqrt(fit[j].variance[0]), radius, std::sqrt(fit[j].variance[1]), fit[j].normal[0], fit[j].normal[1], fit[j].normal[2]);
   for (int j = 0; j < k; ++j) {
     if (std::sqrt(std::max(0.0, fit[j].variance[0])) > o.flatness * radius) return false;
     // A patch, not the strip of points along the feature line.
@@ -212,8 +208,6 @@ Feature classify(const PointIndex& points, PointNormals& normals, const V3& v, d
   seed[0] = normals(near[0]);
   seed[1] = least_aligned([&](V3 n) { return std::abs(dot(n, seed[0])); });
   seed[0] = least_aligned([&](V3 n) { return std::abs(dot(n, seed[1])); });
-  static bool dbg = std::getenv("DBSS_ALIGN_DEBUG2");
-  if (dbg) std::fprintf(stderr, "classify %zu pts r %.3f seeds dot %.3f\n", near.size(), radius, dot(seed[0], seed[1]));
   if (std::abs(dot(seed[0], seed[1])) > min_cos) return f;  // one smooth sheet
   seed[2] = least_aligned([&](V3 n) { return std::max(std::abs(dot(n, seed[0])), std::abs(dot(n, seed[1]))); });
   if (std::max(std::abs(dot(seed[2], seed[0])), std::abs(dot(seed[2], seed[1]))) <= min_cos &&
@@ -305,13 +299,6 @@ void align_to_features(TriangleMesh& m, const PointIndex& points, const CreaseOp
     if (move[a] / shortest[a] != move[b] / shortest[b]) return move[a] / shortest[a] < move[b] / shortest[b];
     return a < b;
   });
-  if (std::getenv("DBSS_ALIGN_DEBUG")) {
-    size_t far2 = 0, far3 = 0, hist[6] = {};
-    for (uint32_t v = 0; v < n; ++v) if (feature[v].planes == 2) ++hist[std::min<size_t>(5, size_t(10 * move[v] * edges[v] / mean_edge[v]))];
-    std::fprintf(stderr, "move/mean edge in tenths: %zu %zu %zu %zu %zu %zu+\n", hist[0], hist[1], hist[2], hist[3], hist[4], hist[5]);
-    for (uint32_t v = 0; v < n; ++v) far2 += feature[v].planes == 2 && move[v] > kLineReach * mean_edge[v] / edges[v], far3 += feature[v].planes == 3 && move[v] > kCornerReach * mean_edge[v] / edges[v];
-    std::fprintf(stderr, "align: %u vertices, %zu line, %zu corner, %zu candidates, too far %zu line %zu corner\n", n, st.line_vertices, st.corner_vertices, order.size(), far2, far3);
-  }
   std::vector<uint8_t> snapped(n, 0);
   std::vector<V3> corners;  // taken: a second vertex on one corner would make a null edge
   for (uint32_t v : order) {

@@ -2,8 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 #include <memory>
 #include <mutex>
 
@@ -117,8 +115,6 @@ Result<EncodedLevels> encode_levels(const TriangleMesh& control, const LevelSamp
       // The format's range caps q too; counted with the sampler's clamps.
       clamped[e] = s.clamped || q.clamped;
       magnitude[e] = std::abs(s.distance);
-      if (std::getenv("DBSS_LEVEL_DEBUG") && l == 1 && std::abs(s.distance) > 0.03)
-        std::fprintf(stderr, "odd %u p %.3f %.3f %.3f n %.3f %.3f %.3f d %.4f half %.4f src %d fit %d q %d\n", e, p[0], p[1], p[2], n[0], n[1], n[2], s.distance, 0.5 * len, int(s.source), int(s.fitted), q.q);
       return q.q;
     };
     format::Level level;
