@@ -150,8 +150,8 @@ int main(int argc, char** argv) {
     }
     const Run& r = runs[1];
     std::printf("### %s\n", shape.c_str());
-    std::printf("aligned: %zu vertices moved onto feature lines, %zu edges flipped along them, %zu chain edges\n", r.stats.aligned,
-                r.stats.align_flips, r.stats.chain_edges);
+    std::printf("aligned: %zu vertices moved onto feature lines, %zu edges flipped and %zu split along them, %zu chain edges\n",
+                r.stats.aligned, r.stats.align_flips, r.stats.align_splits, r.stats.chain_edges);
     std::printf("creases: %zu edges of %zu tested (%zu gaps closed), %zu corners, %zu darts, %zu vertices snapped (largest move %.2e of the "
                 "diagonal); feature length found %.3f, true %.3f (diagonals); tags %zu bytes\n\n",
                 r.stats.creases, r.stats.edges_tested, r.stats.gaps_closed, r.stats.corners, r.stats.darts, r.stats.snapped, r.stats.max_snap / diag,

@@ -245,8 +245,9 @@ std::vector<float> estimate_point_normals(const PointIndex& points) {
 }
 
 void align_to_features(TriangleMesh& m, const PointIndex& points, const CreaseOptions& o, AlignStats* stats,
-                       std::vector<std::array<uint32_t, 2>>* chains) {
+                       std::vector<std::array<uint32_t, 2>>* chains, std::vector<uint32_t>* corners_out) {
   if (chains) chains->clear();
+  if (corners_out) corners_out->clear();
   AlignStats st;
   if (!(o.angle_degrees > 0) || m.triangle_count() == 0 || points.points().size() == 0) {
     if (stats) *stats = st;
@@ -324,6 +325,7 @@ void align_to_features(TriangleMesh& m, const PointIndex& points, const CreaseOp
     }
     snapped[v] = 1;
     ++st.snapped;
+    if (f.planes == 3 && corners_out) corners_out->push_back(v);
     if (f.planes == 3) corners.push_back(f.target);
   }
 
@@ -380,6 +382,91 @@ void align_to_features(TriangleMesh& m, const PointIndex& points, const CreaseOp
       }
     st.flips += flips;
     if (flips == 0) break;
+  }
+  // 4. Splits: where a line stops at a vertex (a dart) because no vertex
+  // lies on it further on, the edge it crosses next is split at the line,
+  // and the walk goes on from the new vertex until it meets a vertex of
+  // the line (or a corner) next to it.  Capped at a tenth of the vertices.
+  {
+    std::vector<std::vector<uint32_t>> tris(m.vertex_count());
+    for (uint32_t f = 0; f < m.triangle_count(); ++f)
+      for (int k = 0; k < 3; ++k) tris[m.triangles[3 * f + k]].push_back(f);
+    const size_t cap = m.vertex_count() / 10;
+    const auto drop = [&](uint32_t v, uint32_t f) { tris[v].erase(std::find(tris[v].begin(), tris[v].end(), f)); };
+    const auto add_triangle = [&](uint32_t f, uint32_t a, uint32_t b, uint32_t c) {
+      if (f == m.triangle_count()) m.triangles.insert(m.triangles.end(), {a, b, c});
+      else m.triangles[3 * f] = a, m.triangles[3 * f + 1] = b, m.triangles[3 * f + 2] = c;
+      edge[key(a, b)] = f, edge[key(b, c)] = f, edge[key(c, a)] = f;
+    };
+    const uint32_t first = static_cast<uint32_t>(m.vertex_count());
+    for (uint32_t start = 0; start < first && st.splits < cap; ++start) {
+      if (!snapped[start] || feature[start].planes != 2) continue;
+      for (double sign : {1.0, -1.0}) {
+        uint32_t u = start;
+        for (int steps = 0; steps < 16 && st.splits < cap; ++steps) {
+          const V3 dir = {sign * feature[start].dir[0], sign * feature[start].dir[1], sign * feature[start].dir[2]};
+          const V3 pu = pos(m, u);
+          // Done when the line goes on along an edge of u already.
+          bool joined = false;
+          for (uint32_t f : tris[u])
+            for (int k = 0; k < 3; ++k) {
+              const uint32_t v = m.triangles[3 * f + k];
+              if (v != u && chain(u, v) && dot(sub(pos(m, v), pu), dir) > 0) joined = true;
+            }
+          if (joined) break;
+          // The triangle at u whose far edge the line crosses.
+          uint32_t best_f = 0, c = 0, d = 0;
+          double best_gap = INFINITY, best_s = 0;
+          for (uint32_t f : tris[u]) {
+            int k = 0;
+            while (m.triangles[3 * f + k] != u) ++k;
+            const uint32_t a = m.triangles[3 * f + (k + 1) % 3], b = m.triangles[3 * f + (k + 2) % 3];
+            // Closest points of the line u + s dir and the segment a + l (b - a).
+            const V3 pa = pos(m, a), ab = sub(pos(m, b), pa), ua = sub(pa, pu);
+            const double bb = dot(ab, ab), db = dot(dir, ab), den = bb - db * db;
+            if (!(den > 1e-12 * bb)) continue;
+            const double l = (db * dot(dir, ua) - dot(ab, ua)) / den;
+            if (l < 0.2 || l > 0.8) continue;
+            const double s = dot(dir, ua) + l * db;
+            const V3 gap = sub(V3{pa[0] + l * ab[0], pa[1] + l * ab[1], pa[2] + l * ab[2]}, V3{pu[0] + s * dir[0], pu[1] + s * dir[1], pu[2] + s * dir[2]});
+            const double g = std::sqrt(dot(gap, gap));
+            if (s > 0 && g < 0.5 * std::sqrt(bb) && g < best_gap) best_gap = g, best_f = f, c = a, d = b, best_s = s;
+          }
+          if (!std::isfinite(best_gap)) break;
+          const auto twin = edge.find(key(d, c));
+          if (twin == edge.end() || chain(c, d)) break;
+          const uint32_t f = best_f, g = twin->second, w = third(g, c, d);
+          const V3 px = {pu[0] + best_s * dir[0], pu[1] + best_s * dir[1], pu[2] + best_s * dir[2]};
+          const V3 pc = pos(m, c), pd = pos(m, d), pw = pos(m, w);
+          const V3 nf = unit(face_normal(m, f)), ng = unit(face_normal(m, g));
+          // The four new triangles: not slivers, not turned over.
+          if (quality(pc, px, pu) < 0.05 || quality(px, pd, pu) < 0.05 || quality(pd, px, pw) < 0.05 || quality(px, pc, pw) < 0.05) break;
+          if (dot(unit(cross(sub(px, pc), sub(pu, pc))), nf) <= 0 || dot(unit(cross(sub(pd, px), sub(pu, px))), nf) <= 0 ||
+              dot(unit(cross(sub(px, pd), sub(pw, pd))), ng) <= 0 || dot(unit(cross(sub(pc, px), sub(pw, px))), ng) <= 0)
+            break;
+          // f = (c, d, u) -> (c, x, u) + (x, d, u); g = (d, c, w) -> (d, x, w) + (x, c, w).
+          const uint32_t x = static_cast<uint32_t>(m.vertex_count());
+          for (int a = 0; a < 3; ++a) m.positions.push_back(static_cast<float>(px[a]));
+          feature.push_back(feature[start]);
+          snapped.push_back(1);
+          valence.push_back(4);
+          ++valence[u], ++valence[w];
+          tris.emplace_back();
+          edge.erase(key(c, d)), edge.erase(key(d, c));
+          const uint32_t f2 = static_cast<uint32_t>(m.triangle_count());
+          add_triangle(f, c, x, u);
+          add_triangle(f2, x, d, u);
+          const uint32_t g2 = static_cast<uint32_t>(m.triangle_count());
+          add_triangle(g, d, x, w);
+          add_triangle(g2, x, c, w);
+          drop(d, f), tris[d].push_back(f2), tris[u].push_back(f2);
+          drop(c, g), tris[c].push_back(g2), tris[w].push_back(g2);
+          tris[x] = {f, f2, g, g2};
+          ++st.splits;
+          u = x;
+        }
+      }
+    }
   }
   if (chains) {
     chains->clear();

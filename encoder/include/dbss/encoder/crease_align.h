@@ -35,10 +35,14 @@ struct AlignStats {
 // line, along the line, are flipped to that diagonal.  Topology (genus,
 // boundary) is unchanged.  `chains` (may be null) gets the interior edges
 // (u < w, sorted) joining two moved vertices of one line along it: the
-// crease edges.  Does nothing when options.angle_degrees <= 0.
-// Deterministic (fixed visiting order).
+// crease edges; `corners` (may be null) the vertices moved onto a corner.
+// Where a line stops short of the next vertex on it, the edges it crosses
+// are split at the line (new vertices at the end of mesh.positions), at
+// most a tenth of the vertex count.  Does nothing when
+// options.angle_degrees <= 0.  Deterministic (fixed visiting order).
 void align_to_features(TriangleMesh& mesh, const PointIndex& points, const CreaseOptions& options,
-                       AlignStats* stats = nullptr, std::vector<std::array<uint32_t, 2>>* chains = nullptr);
+                       AlignStats* stats = nullptr, std::vector<std::array<uint32_t, 2>>* chains = nullptr,
+                       std::vector<uint32_t>* corners = nullptr);
 
 // A unit normal per point (3 floats each, sign arbitrary): the least-squares
 // plane of its 12 nearest points.  Next to a feature the normal blends the

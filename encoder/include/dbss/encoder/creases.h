@@ -36,11 +36,12 @@ struct CreaseStats {
   size_t creases = 0, corners = 0;
   size_t darts = 0;        // vertices where a crease ends (one crease edge)
   size_t gaps_closed = 0;  // edges tagged because they join two crease ends in line
+  size_t spurs = 0;        // tags taken back: a dart's edge off a chain
   size_t snapped = 0;      // vertices moved onto a feature line or corner
   double max_snap = 0;     // largest move, model units
   // The control mesh's alignment to the feature lines before the test
   // (crease_align.h): counts of its vertices moved and edges flipped.
-  size_t aligned = 0, align_flips = 0;
+  size_t aligned = 0, align_flips = 0, align_splits = 0;
   size_t chain_edges = 0;  // tagged as joining two aligned vertices along their line
 };
 
