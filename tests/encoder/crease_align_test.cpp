@@ -11,6 +11,7 @@
 #include "dbss/decoder/topology.h"
 #include "dbss/encoder/crease_align.h"
 #include "dbss/encoder/encode.h"
+#include "dbss/measure/mesh_distance.h"
 #include "dbss/measure/surface_samples.h"
 
 using namespace dbss;
@@ -95,4 +96,28 @@ TEST_CASE("alignment moves nothing on smooth shapes") {
     CHECK(control.positions == m.positions);
     CHECK(control.triangles == m.triangles);
   }
+}
+
+TEST_CASE("a sampled cube's refined levels: creases and one-sided sampling keep the edges sharp") {
+  const TriangleMesh truth = test::cube();
+  const PointCloud pc = sampled(truth, 40000);
+  const double diagonal = 2 * std::sqrt(3.0);
+  double mean[2] = {}, worst[2] = {};  // level 2's, over the diagonal
+  for (int on = 0; on < 2; ++on) {
+    EncodeOptions o;
+    o.levels = 2;
+    o.threads = 2;
+    o.creases.angle_degrees = on ? 30 : 0;
+    auto e = encode_points(pc, o);
+    REQUIRE(e.ok());
+    const Encoding& enc = e.value();
+    const TriangleMesh level{enc.levels.positions[2], enc.levels.triangles[2]};
+    const MeshDistance d = mesh_distance(level, truth, {40000, 1, 2});
+    mean[on] = d.mean() / diagonal, worst[on] = d.max() / diagonal;
+  }
+  INFO("level 2 off: " << mean[0] << " / " << worst[0] << ", on: " << mean[1] << " / " << worst[1]);
+  // When written: mean 1.02e-4 off, 5.1e-5 on.  The Hausdorff distance is
+  // not checked: a few odd vertices beside a chain's gap still overshoot
+  // (3.5% off, 3.9% on here; under 1% with crease_bench's seed).
+  CHECK(mean[1] < 0.7 * mean[0]);
 }
