@@ -7,7 +7,8 @@
 // bytes the tags cost, and per level the two-sided mean and the Hausdorff
 // distance over the true mesh's diagonal, off and on.
 //
-// usage: crease_bench [--points N] [--levels L] [--angle DEG] [--samples S] [--skip-absent] [--no-shape] SHAPE...
+// usage: crease_bench [--points N] [--levels L] [--angle DEG] [--samples S] [--skip-absent] [--no-shape] [--split] SHAPE...
+//   --split: with crease alignment's edge splits (CreaseOptions::split)
 //   --no-shape: without the control mesh's shaping pass (edge flips, relaxation)
 //   CREASE_BENCH_DUMP=DIR (environment): each level written to DIR/SHAPE-{on,off}-L.off and
 //   the level-0 tags (edge ends, "c" corners) to DIR/SHAPE-creases.txt, for a closer look
@@ -66,7 +67,7 @@ int main(int argc, char** argv) {
   uint32_t levels = 4;
   double angle = 30;
   std::vector<std::string> shapes;
-  bool skip_absent = false, shaping = true;
+  bool skip_absent = false, shaping = true, split = false;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--points" && i + 1 < argc) points = std::strtoull(argv[++i], nullptr, 10);
@@ -75,6 +76,7 @@ int main(int argc, char** argv) {
     else if (a == "--samples" && i + 1 < argc) samples = std::strtoull(argv[++i], nullptr, 10);
     else if (a == "--skip-absent") skip_absent = true;
     else if (a == "--no-shape") shaping = false;
+    else if (a == "--split") split = true;
     else if (!a.empty() && a[0] == '-') return std::fprintf(stderr, "crease_bench: unknown option %s\n", a.c_str()), 1;
     else shapes.push_back(a);
   }
@@ -113,6 +115,7 @@ int main(int argc, char** argv) {
       eo.levels = levels;
       eo.creases.angle_degrees = on ? angle : 0;
       eo.control.shape.enabled = shaping;
+      eo.creases.split = split;
       auto e = dbss::encode_points(pc, eo);
       if (!e.ok()) return std::fprintf(stderr, "crease_bench: %s: %s\n", shape.c_str(), e.status().to_string().c_str()), 1;
       const dbss::Encoding& enc = e.value();

@@ -387,7 +387,7 @@ void align_to_features(TriangleMesh& m, const PointIndex& points, const CreaseOp
   // lies on it further on, the edge it crosses next is split at the line,
   // and the walk goes on from the new vertex until it meets a vertex of
   // the line (or a corner) next to it.  Capped at a tenth of the vertices.
-  {
+  if (o.split) {
     std::vector<std::vector<uint32_t>> tris(m.vertex_count());
     for (uint32_t f = 0; f < m.triangle_count(); ++f)
       for (int k = 0; k < 3; ++k) tris[m.triangles[3 * f + k]].push_back(f);

@@ -36,9 +36,9 @@ struct AlignStats {
 // boundary) is unchanged.  `chains` (may be null) gets the interior edges
 // (u < w, sorted) joining two moved vertices of one line along it: the
 // crease edges; `corners` (may be null) the vertices moved onto a corner.
-// Where a line stops short of the next vertex on it, the edges it crosses
-// are split at the line (new vertices at the end of mesh.positions), at
-// most a tenth of the vertex count.  Does nothing when
+// With options.split, where a line stops short of the next vertex on it,
+// the edges it crosses are split at the line (new vertices at the end of
+// mesh.positions), at most a tenth of the vertex count.  Does nothing when
 // options.angle_degrees <= 0.  Deterministic (fixed visiting order).
 void align_to_features(TriangleMesh& mesh, const PointIndex& points, const CreaseOptions& options,
                        AlignStats* stats = nullptr, std::vector<std::array<uint32_t, 2>>* chains = nullptr,
