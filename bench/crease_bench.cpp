@@ -7,9 +7,12 @@
 // bytes the tags cost, and per level the two-sided mean and the Hausdorff
 // distance over the true mesh's diagonal, off and on.
 //
-// usage: crease_bench [--points N] [--levels L] [--angle DEG] [--samples S] [--skip-absent] [--no-shape] SHAPE...
+// usage: crease_bench [--points N] [--levels L] [--angle DEG] [--samples S] [--skip-absent] [--no-shape] [--split] SHAPE...
+//   --split: with crease alignment's edge splits (CreaseOptions::split)
 //   --no-shape: without the control mesh's shaping pass (edge flips, relaxation)
-//   SHAPE: cube, cylinder, roof, or a mesh file (absent with --skip-absent: exit 77 unless CI=true)
+//   CREASE_BENCH_DUMP=DIR (environment): each level written to DIR/SHAPE-{on,off}-L.off and
+//   the level-0 tags (edge ends, "c" corners) to DIR/SHAPE-creases.txt, for a closer look
+//   SHAPE: cube, cylinder, roof, sphere, torus (smooth: no crease should be found), or a mesh file (absent with --skip-absent: exit 77 unless CI=true)
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -18,6 +21,7 @@
 #include <vector>
 
 #include "crease_shapes.h"
+#include "shapes.h"
 #include "dbss/encoder/encode.h"
 #include "dbss/encoder/point_input.h"
 #include "dbss/io/geometry_files.h"
@@ -63,7 +67,7 @@ int main(int argc, char** argv) {
   uint32_t levels = 4;
   double angle = 30;
   std::vector<std::string> shapes;
-  bool skip_absent = false, shaping = true;
+  bool skip_absent = false, shaping = true, split = false;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--points" && i + 1 < argc) points = std::strtoull(argv[++i], nullptr, 10);
@@ -72,6 +76,7 @@ int main(int argc, char** argv) {
     else if (a == "--samples" && i + 1 < argc) samples = std::strtoull(argv[++i], nullptr, 10);
     else if (a == "--skip-absent") skip_absent = true;
     else if (a == "--no-shape") shaping = false;
+    else if (a == "--split") split = true;
     else if (!a.empty() && a[0] == '-') return std::fprintf(stderr, "crease_bench: unknown option %s\n", a.c_str()), 1;
     else shapes.push_back(a);
   }
@@ -86,6 +91,8 @@ int main(int argc, char** argv) {
     if (name == "cube") truth = dbss::test::cube();
     else if (name == "cylinder") truth = dbss::test::capped_cylinder(64, 9);
     else if (name == "roof") truth = dbss::test::roof_block(8);
+    else if (name == "sphere") truth = dbss::test::uv_sphere(48, 64);
+    else if (name == "torus") truth = dbss::test::torus(96, 48);
     else {
       if (!std::filesystem::exists(name)) {
         if (skip_absent && !(ci != nullptr && std::string(ci) == "true"))
@@ -108,6 +115,7 @@ int main(int argc, char** argv) {
       eo.levels = levels;
       eo.creases.angle_degrees = on ? angle : 0;
       eo.control.shape.enabled = shaping;
+      eo.creases.split = split;
       auto e = dbss::encode_points(pc, eo);
       if (!e.ok()) return std::fprintf(stderr, "crease_bench: %s: %s\n", shape.c_str(), e.status().to_string().c_str()), 1;
       const dbss::Encoding& enc = e.value();
@@ -117,6 +125,26 @@ int main(int argc, char** argv) {
         if (t.type == dbss::format::kCrea) runs[on].tag_bytes = t.length + 12 + 16;  // data, frame, INDX entry
       for (uint32_t l = 0; l <= enc.level_count; ++l) {
         const dbss::TriangleMesh m{enc.levels.positions[l], enc.levels.triangles[l]};
+        if (const char* dump = std::getenv("CREASE_BENCH_DUMP")) {
+          const std::string path = std::string(dump) + "/" + shape + (on ? "-on-" : "-off-") + std::to_string(l) + ".off";
+          if (FILE* f = std::fopen(path.c_str(), "w")) {
+            std::fprintf(f, "OFF\n%zu %zu 0\n", m.vertex_count(), m.triangle_count());
+            for (size_t i = 0; i < m.vertex_count(); ++i)
+              std::fprintf(f, "%.9g %.9g %.9g\n", m.positions[3 * i], m.positions[3 * i + 1], m.positions[3 * i + 2]);
+            for (size_t i = 0; i < m.triangle_count(); ++i)
+              std::fprintf(f, "3 %u %u %u\n", m.triangles[3 * i], m.triangles[3 * i + 1], m.triangles[3 * i + 2]);
+            std::fclose(f);
+          }
+          if (l == 0 && !enc.contents.creases.empty())
+            if (FILE* f = std::fopen((std::string(dump) + "/" + shape + "-creases.txt").c_str(), "w")) {
+              auto t = dbss::build_topology(static_cast<uint32_t>(m.vertex_count()), m.triangles).value();
+              for (uint32_t i = 0; i < t.edge_count(); ++i)
+                if (enc.contents.creases.edge[i]) std::fprintf(f, "%u %u\n", t.triangles[t.edge_half[i]], t.triangles[dbss::next_half(t.edge_half[i])]);
+              for (uint32_t v = 0; v < t.vertex_count; ++v)
+                if (enc.contents.creases.corner[v]) std::fprintf(f, "c %u\n", v);
+              std::fclose(f);
+            }
+        }
         const dbss::MeshDistance d = dbss::mesh_distance(m, truth, {samples, 1, 2});
         runs[on].bytes.push_back(dbss::prefix_bytes(enc, l));
         runs[on].mean.push_back(d.mean() / diag);
@@ -125,6 +153,8 @@ int main(int argc, char** argv) {
     }
     const Run& r = runs[1];
     std::printf("### %s\n", shape.c_str());
+    std::printf("aligned: %zu vertices moved onto feature lines, %zu edges flipped and %zu split along them, %zu chain edges\n",
+                r.stats.aligned, r.stats.align_flips, r.stats.align_splits, r.stats.chain_edges);
     std::printf("creases: %zu edges of %zu tested (%zu gaps closed), %zu corners, %zu darts, %zu vertices snapped (largest move %.2e of the "
                 "diagonal); feature length found %.3f, true %.3f (diagonals); tags %zu bytes\n\n",
                 r.stats.creases, r.stats.edges_tested, r.stats.gaps_closed, r.stats.corners, r.stats.darts, r.stats.snapped, r.stats.max_snap / diag,

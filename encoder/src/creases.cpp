@@ -6,6 +6,7 @@
 #include <unordered_set>
 
 #include "dbss/decoder/topology.h"
+#include "dbss/encoder/crease_align.h"
 #include "dbss/encoder/point_distances.h"
 
 namespace dbss {
@@ -41,6 +42,13 @@ format::Creases find_creases(TriangleMesh& mesh, const PointIndex& points, const
     if (stats) *stats = st;
     return out;
   }
+  // Edges along the features first: the test below only finds crease
+  // edges the control mesh has.
+  AlignStats aligned;
+  std::vector<std::array<uint32_t, 2>> chains;
+  std::vector<uint32_t> corners;
+  align_to_features(mesh, points, o, &aligned, &chains, &corners);
+  st.aligned = aligned.snapped, st.align_flips = aligned.flips, st.align_splits = aligned.splits;
   auto built = build_topology(static_cast<uint32_t>(mesh.vertex_count()), mesh.triangles);
   if (!built.ok()) return out;
   const LevelTopology& t = built.value();
@@ -52,6 +60,15 @@ format::Creases find_creases(TriangleMesh& mesh, const PointIndex& points, const
   for (uint32_t e = 0; e < t.edge_count(); ++e) {
     const uint32_t h = t.edge_half[e], tw = t.twin[h];
     if (tw == kNoHalfEdge) continue;
+    {
+      // An edge of a chain along a feature line: its ends are on the line already.
+      const uint32_t a = std::min(t.triangles[h], t.triangles[next_half(h)]), b = std::max(t.triangles[h], t.triangles[next_half(h)]);
+      if (std::binary_search(chains.begin(), chains.end(), std::array<uint32_t, 2>{a, b})) {
+        crease[e] = 1;
+        ++st.chain_edges;
+        continue;
+      }
+    }
     const uint32_t u = t.triangles[h], w = t.triangles[next_half(h)];
     const V3 pu = at(mesh.positions, u), pw = at(mesh.positions, w);
     const V3 pc1 = at(mesh.positions, t.triangles[prev_half(h)]), pd = at(mesh.positions, t.triangles[prev_half(tw)]);
@@ -147,8 +164,29 @@ format::Creases find_creases(TriangleMesh& mesh, const PointIndex& points, const
     }
     count_creases();
   }
+  // Spurs: an edge the test tagged beside a chain (one end a dart, the
+  // other on a chain with two more crease edges) is an edge of a face
+  // next to the feature, not the feature; left, it makes a false corner
+  // and a dart.
+  for (bool again = true; again;) {
+    again = false;
+    for (uint32_t e = 0; e < t.edge_count(); ++e) {
+      if (!crease[e]) continue;
+      const uint32_t h = t.edge_half[e], u = t.triangles[h], w = t.triangles[next_half(h)];
+      if (std::binary_search(chains.begin(), chains.end(), std::array<uint32_t, 2>{std::min(u, w), std::max(u, w)})) continue;
+      if ((count[u] == 1 && count[w] >= 3) || (count[w] == 1 && count[u] >= 3)) {
+        crease[e] = 0, --count[u], --count[w], again = true;
+        ++st.spurs;
+      }
+    }
+  }
   for (uint32_t e = 0; e < t.edge_count(); ++e) st.creases += crease[e];
-  for (uint32_t v = 0; v < t.vertex_count; ++v) st.darts += count[v] == 1;
+  // A vertex moved onto three planes' common point is a corner where any
+  // crease reaches it (a chain that ends there is not a dart).
+  std::vector<uint8_t> at_corner(t.vertex_count, 0);
+  for (uint32_t v : corners)
+    if (v < t.vertex_count && count[v] >= 1) at_corner[v] = 1;
+  for (uint32_t v = 0; v < t.vertex_count; ++v) st.darts += count[v] == 1 && !at_corner[v];
   if (st.creases == 0) {
     if (stats) *stats = st;
     return out;
@@ -164,7 +202,7 @@ format::Creases find_creases(TriangleMesh& mesh, const PointIndex& points, const
   }
   std::vector<float> moved = mesh.positions;
   for (uint32_t v = 0; v < t.vertex_count; ++v) {
-    if (count[v] >= 3) out.corner[v] = 1, ++st.corners;
+    if (count[v] >= 3 || at_corner[v]) out.corner[v] = 1, ++st.corners;
     if (planes[v].empty()) continue;
     // Least squares over the planes, with a weak pull to where the vertex
     // is (it fixes the position along a feature line, and regularizes

@@ -6,6 +6,7 @@
 #include <mutex>
 
 #include "dbss/decoder/level_refiner.h"
+#include "dbss/encoder/crease_align.h"
 #include "dbss/encoder/quantize.h"
 #include "dbss/encoder/sampling.h"
 #include "dbss/format/writer.h"
@@ -60,10 +61,19 @@ Result<EncodedLevels> encode_levels(const TriangleMesh& control, const PointInde
                                     const LevelEncodeOptions& o) {
   // The scratch pool lives as long as the encoding; each sample borrows one.
   auto scratch = std::make_shared<ScratchPool>();
+  // With creases, one-sided sampling: a line next to a crease sees only the
+  // points of its own side (their normals agree with its own within 30
+  // degrees), so the fit does not round the feature it stops at.
+  auto normals = std::make_shared<std::vector<float>>();
+  PointSides sides;
+  if (!o.creases.empty()) {
+    *normals = estimate_point_normals(points);
+    sides = {normals.get(), std::cos(30 * 3.14159265358979323846 / 180)};
+  }
   LevelSampler sampler;
-  sampler.sample = [&points, scratch](uint32_t, const double p[3], const double n[3], double half_length) {
+  sampler.sample = [&points, scratch, normals, sides](uint32_t, const double p[3], const double n[3], double half_length) {
     SampleScratch& mine = scratch->take();
-    const Sample s = sample_displacement(points, p, n, half_length, half_length, mine);
+    const Sample s = sample_displacement(points, p, n, half_length, half_length, mine, true, sides.normals ? &sides : nullptr);
     scratch->give(mine);
     return s;
   };

@@ -36,7 +36,7 @@ Sample sample_displacement(const PointIndex& index, const double p[3], const dou
 }
 
 Sample sample_displacement(const PointIndex& index, const double pd[3], const double nd[3], double radius,
-                           double half_length, SampleScratch& scratch, bool fit) {
+                           double half_length, SampleScratch& scratch, bool fit, const PointSides* sides) {
   const PointCloud& pc = index.points();
   const V p(pd[0], pd[1], pd[2]), n(nd[0], nd[1], nd[2]);
   const auto point = [&](uint32_t i) { return V(pc.xyz[3 * i], pc.xyz[3 * i + 1], pc.xyz[3 * i + 2]); };
@@ -49,11 +49,24 @@ Sample sample_displacement(const PointIndex& index, const double pd[3], const do
   using Cand = SampleScratch::Candidate;
   std::vector<Cand>& cyl = scratch.cylinder;
   cyl.clear();
-  for (uint32_t i : near) {
-    const V x = point(i);
-    const double t = (x - p).dot(n);
-    const double h = (x - p - t * n).norm();
-    if (h < radius && std::abs(t) < half_length) cyl.push_back({h, t, i});
+  // One-sided: the points beside a feature line often belong to the other
+  // side, so the line's own side may need a wider cylinder; with too few
+  // there either, both sides (and the fit from both).
+  for (int pass = sides ? 0 : 2; pass < 3 && cyl.size() < 3; ++pass) {
+    const double r = pass == 1 ? 2 * radius : radius;
+    if (pass == 1) index.within(q, static_cast<float>(std::sqrt(r * r + half_length * half_length)), near);
+    if (pass == 2 && sides) {
+      sides = nullptr;
+      index.within(q, static_cast<float>(std::sqrt(radius * radius + half_length * half_length)), near);
+    }
+    cyl.clear();
+    for (uint32_t i : near) {
+      if (sides && !sides->agrees(i, nd)) continue;
+      const V x = point(i);
+      const double t = (x - p).dot(n);
+      const double h = (x - p - t * n).norm();
+      if (h < r && std::abs(t) < half_length) cyl.push_back({h, t, i});
+    }
   }
   auto finish = [&](double d, SampleSource src) {
     out.source = src;
@@ -62,7 +75,7 @@ Sample sample_displacement(const PointIndex& index, const double pd[3], const do
     // A fit that leaves the cylinder the hit was found in (its neighbourhood
     // reaches past the cylinder on a sparse scan) is not trusted over it.
     if (fit) {
-      const SurfaceFit f = fit_height(index, pd, nd, d, kFitPoints, scratch.fit);
+      const SurfaceFit f = fit_height(index, pd, nd, d, kFitPoints, scratch.fit, sides);
       if (f.ok && (std::abs(f.height) <= half_length || std::abs(d) > half_length)) d = f.height, out.fitted = true;
     }
     out.clamped = std::abs(d) > half_length;

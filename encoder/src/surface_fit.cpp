@@ -38,7 +38,7 @@ double residual(const FitScratch& s, size_t i, const Eigen::Matrix<double, 6, 1>
 }  // namespace
 
 SurfaceFit fit_height(const PointIndex& index, const double p[3], const double n[3], double t0, size_t k,
-                      FitScratch& s) {
+                      FitScratch& s, const PointSides* sides) {
   SurfaceFit out;
   const PointCloud& pc = index.points();
   const float foot[3] = {static_cast<float>(p[0] + t0 * n[0]), static_cast<float>(p[1] + t0 * n[1]),
@@ -60,6 +60,7 @@ SurfaceFit fit_height(const PointIndex& index, const double p[3], const double n
   s.u.clear(), s.v.clear(), s.h.clear(), s.w.clear();
   for (size_t i = 0; i < found; ++i) {
     const uint32_t j = s.index[i];
+    if (sides && !sides->agrees(j, n)) continue;
     const Eigen::Vector3d d = Eigen::Vector3d(pc.xyz[3 * j], pc.xyz[3 * j + 1], pc.xyz[3 * j + 2]) - origin;
     const double h = d.dot(nz);
     if (std::abs(h - t0) > band) continue;

@@ -49,9 +49,11 @@ struct SampleScratch {
 // triangle of points in the cylinder, their plane, or the nearest point)
 // picks the sheet; the distance is then taken to the fitted surface of the
 // kFitPoints points around that hit (fit_height), unless `fit` is false or
-// the fit fails.
+// the fit fails.  `sides` (may be null): one-sided, the hit and the fit
+// from the points whose normal agrees with n (PointSides), unless fewer
+// than 3 of them are in the cylinder.
 Sample sample_displacement(const PointIndex& points, const double p[3], const double n[3], double radius,
-                           double half_length, SampleScratch& scratch, bool fit = true);
+                           double half_length, SampleScratch& scratch, bool fit = true, const PointSides* sides = nullptr);
 // The same with scratch space of its own (allocated per call): for single
 // samples and tests.
 Sample sample_displacement(const PointIndex& points, const double p[3], const double n[3], double radius,

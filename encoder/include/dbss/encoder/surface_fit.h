@@ -5,6 +5,7 @@
 // surface instead of noise coded at full precision (issue 15).
 #pragma once
 
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -18,6 +19,19 @@ struct FitScratch {
   std::vector<float> dist2;
   std::vector<double> u, v, h, w;  // the kept points in the line's frame, their weights
   std::vector<double> gauss, residual, sorted;  // the robust rounds' working arrays
+};
+
+// One-sided sampling next to a crease: a unit normal per point (3 floats
+// each) and the cosine under which a point's normal disagrees with the
+// sample's line; such points (the other side of a crease, or the blend
+// along it) are left out, so the fit does not round the feature.
+struct PointSides {
+  const std::vector<float>* normals = nullptr;
+  double min_cos = 0;
+  bool agrees(uint32_t i, const double n[3]) const {
+    const float* m = normals->data() + 3 * size_t{i};
+    return std::abs(m[0] * n[0] + m[1] * n[1] + m[2] * n[2]) >= min_cos;
+  }
 };
 
 struct SurfaceFit {
@@ -37,7 +51,8 @@ struct SurfaceFit {
 // level's edge length.  Two more rounds reweight each point by its residual
 // (Tukey's biweight), so a stray point left among the surface's points does
 // not pull the fit.  Not ok with fewer than 4 points or an ill-posed fit.
+// `sides` (may be null): only the points whose normal agrees with n.
 SurfaceFit fit_height(const PointIndex& points, const double p[3], const double n[3], double t0, size_t k,
-                      FitScratch& scratch);
+                      FitScratch& scratch, const PointSides* sides = nullptr);
 
 }  // namespace dbss

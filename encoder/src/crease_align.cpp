@@ -1,0 +1,482 @@
+#include "dbss/encoder/crease_align.h"
+
+#include <Eigen/Dense>
+
+#include <algorithm>
+#include <cmath>
+#include <unordered_map>
+#include <vector>
+
+#include "dbss/encoder/point_distances.h"
+#include "mesh_geometry.h"
+
+namespace dbss {
+
+using namespace mesh_geometry;
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+// Points whose normals are estimated from this many neighbours: enough to
+// average sampling noise, few enough that only a narrow band along a
+// feature sees both sides.
+constexpr size_t kNormalPoints = 12;
+// How far a vertex moves onto a line or a corner, in its mean edge
+// lengths: QEM crowds vertices near features, up to half an edge beside
+// them; the nearest go first, and a move that makes a triangle poorer than
+// kMinQuality or turns it over is not made.
+constexpr double kLineReach = 0.5, kCornerReach = 0.8, kMinQuality = 0.15;
+// The fewest points a vertex's neighbourhood holds.
+constexpr size_t kNeighbourhood = 64;
+// Two planes are one plane of the part when their normals are this close.
+const double kSamePlane = std::cos(15 * kPi / 180);
+// A chain edge runs along its line within this angle.
+const double kAlong = std::sin(20 * kPi / 180);
+
+V3 unit(V3 v) {
+  const double l = std::sqrt(dot(v, v));
+  return l > 0 ? V3{v[0] / l, v[1] / l, v[2] / l} : V3{0, 0, 0};
+}
+
+double quality(V3 a, V3 b, V3 c) {
+  const double e = dot(sub(b, a), sub(b, a)) + dot(sub(c, b), sub(c, b)) + dot(sub(a, c), sub(a, c));
+  if (!(e > 0)) return 0;
+  const V3 n = cross(sub(b, a), sub(c, a));
+  return 2 * std::sqrt(3.0) * std::sqrt(dot(n, n)) / e;
+}
+
+uint64_t key(uint32_t u, uint32_t v) { return (uint64_t{u} << 32) | v; }
+
+V3 point_of(const PointCloud& pc, uint32_t i) { return {pc.xyz[3 * size_t{i}], pc.xyz[3 * size_t{i} + 1], pc.xyz[3 * size_t{i} + 2]}; }
+
+// A point's normal from its kNormalPoints nearest: the plane through the
+// point and two of them that most of the others lie on (within a tenth of
+// the neighbourhood's radius), refitted to those.  Beside a crease the plain
+// least-squares plane of all of them blends the two sides; this one takes
+// the side most of the neighbours are on, up to the feature line.
+std::array<double, 3> robust_normal(const PointIndex& points, uint32_t i) {
+  const PointCloud& pc = points.points();
+  uint32_t near[kNormalPoints], inliers[kNormalPoints];
+  float dist2[kNormalPoints];
+  const size_t found = points.nearest_k(&pc.xyz[3 * size_t{i}], kNormalPoints, near, dist2);
+  if (found < 3) return fit_plane(pc, near, found).normal;
+  const V3 p = point_of(pc, i);
+  const double tol = 0.1 * std::sqrt(double{dist2[found - 1]});
+  size_t best = 0;
+  V3 best_n{};
+  for (size_t a = 0; a < found; ++a)
+    for (size_t b = a + 1; b < found; ++b) {
+      const V3 da = sub(point_of(pc, near[a]), p), db = sub(point_of(pc, near[b]), p);
+      const V3 c = cross(da, db);
+      const double l = std::sqrt(dot(c, c));
+      if (!(l > 0.3 * std::sqrt(dot(da, da) * dot(db, db)))) continue;  // nearly in line: no plane
+      const V3 nn = {c[0] / l, c[1] / l, c[2] / l};
+      size_t count = 0;
+      for (size_t j = 0; j < found; ++j) count += std::abs(dot(sub(point_of(pc, near[j]), p), nn)) <= tol;
+      if (count > best) best = count, best_n = nn;
+    }
+  if (best < 3) return fit_plane(pc, near, found).normal;
+  size_t m = 0;
+  for (size_t j = 0; j < found; ++j)
+    if (std::abs(dot(sub(point_of(pc, near[j]), p), best_n)) <= tol) inliers[m++] = near[j];
+  return fit_plane(pc, inliers, m).normal;
+}
+
+// Unit normals of the points, estimated when first asked for.
+class PointNormals {
+ public:
+  explicit PointNormals(const PointIndex& points) : points_(points), normal_(3 * points.points().size()), known_(points.points().size(), 0) {}
+  V3 operator()(uint32_t i) {
+    if (!known_[i]) {
+      const V3 nn = robust_normal(points_, i);
+      for (int a = 0; a < 3; ++a) normal_[3 * size_t{i} + a] = nn[a];
+      known_[i] = 1;
+    }
+    return {normal_[3 * size_t{i}], normal_[3 * size_t{i} + 1], normal_[3 * size_t{i} + 2]};
+  }
+
+ private:
+  const PointIndex& points_;
+  std::vector<double> normal_;
+  std::vector<uint8_t> known_;
+};
+
+// What the points around a vertex show: nothing, two planes (a line) or
+// three (a corner).
+struct Feature {
+  int planes = 0;
+  V3 normal[3]{}, point[3]{};
+  V3 target{};  // nearest point of the line, or the corner
+  V3 dir{};     // the line's direction (two planes)
+};
+
+// Splits `near` into k groups seeded by the normals `seed`, refits each
+// group's plane and reassigns points to their nearest plane twice; true
+// when every group is a flat patch (not a strip along the feature) and the
+// planes meet pairwise at more than the angle.
+bool fit_groups(const PointCloud& pc, const std::vector<uint32_t>& near, PointNormals& normals, const V3* seed, int k,
+                double radius, double min_cos, const CreaseOptions& o, Feature& f) {
+  std::vector<uint32_t> group[3];
+  for (uint32_t i : near) {
+    const V3 n = normals(i);
+    int best = 0;
+    for (int j = 1; j < k; ++j)
+      if (std::abs(dot(n, seed[j])) > std::abs(dot(n, seed[best]))) best = j;
+    group[best].push_back(i);
+  }
+  PointPlane fit[3];
+  for (int round = 0; round < 3; ++round) {
+    for (int j = 0; j < k; ++j) {
+      if (group[j].size() < o.min_side_points) return false;
+      fit[j] = fit_plane(pc, group[j].data(), group[j].size());
+    }
+    if (round == 2) break;
+    for (int j = 0; j < k; ++j) group[j].clear();
+    for (uint32_t i : near) {
+      const V3 p = point_of(pc, i);
+      int best = 0;
+      double best_d = INFINITY;
+      for (int j = 0; j < k; ++j) {
+        const double d = std::abs(dot(sub(p, fit[j].point), fit[j].normal));
+        if (d < best_d) best_d = d, best = j;
+      }
+      group[best].push_back(i);
+    }
+  }
+  for (int j = 0; j < k; ++j) {
+    if (std::sqrt(std::max(0.0, fit[j].variance[0])) > o.flatness * radius) return false;
+    // A patch, not the strip of points along the feature line.
+    if (fit[j].variance[1] < std::pow(0.15 * radius, 2)) return false;
+    for (int i = 0; i < j; ++i)
+      if (std::abs(dot(fit[i].normal, fit[j].normal)) > min_cos) return false;
+  }
+  f.planes = k;
+  for (int j = 0; j < k; ++j) f.normal[j] = fit[j].normal, f.point[j] = fit[j].point;
+  return true;
+}
+
+// The point on the planes nearest `v`: with two planes, their line's point
+// nearest v; with three, their common point.  False when ill-conditioned.
+bool solve_target(Feature& f, const V3& v) {
+  Eigen::Matrix3d a;
+  Eigen::Vector3d b;
+  for (int j = 0; j < f.planes; ++j) {
+    for (int c = 0; c < 3; ++c) a(j, c) = f.normal[j][c];
+    b[j] = dot(f.normal[j], f.point[j]);
+  }
+  if (f.planes == 2) {
+    f.dir = unit(cross(f.normal[0], f.normal[1]));
+    for (int c = 0; c < 3; ++c) a(2, c) = f.dir[c];
+    b[2] = dot(f.dir, v);
+  }
+  Eigen::FullPivLU<Eigen::Matrix3d> lu(a);
+  if (lu.rank() < 3) return false;
+  const Eigen::Vector3d x = lu.solve(b);
+  if (!x.allFinite()) return false;
+  f.target = {x[0], x[1], x[2]};
+  return true;
+}
+
+Feature classify(const PointIndex& points, PointNormals& normals, const V3& v, double radius, double min_cos,
+                 const CreaseOptions& o, std::vector<uint32_t>& near) {
+  Feature f;
+  const float q[3] = {static_cast<float>(v[0]), static_cast<float>(v[1]), static_cast<float>(v[2])};
+  // At least kNeighbourhood points: QEM leaves short edges along features,
+  // where 0.6 of an edge holds too few points to fit two planes.
+  {
+    uint32_t idx[kNeighbourhood];
+    float dist2[kNeighbourhood];
+    const size_t found = points.nearest_k(q, kNeighbourhood, idx, dist2);
+    if (found == kNeighbourhood) radius = std::max(radius, double{std::sqrt(dist2[found - 1])});
+  }
+  points.within(q, static_cast<float>(radius), near);
+  if (near.size() < 2 * o.min_side_points) return f;
+  std::sort(near.begin(), near.end());  // the index's order is not the seeds' business
+  const PointCloud& pc = points.points();
+  // Seeds: normals as far apart as the neighbourhood has (a normal of a
+  // point on the feature is a blend of both sides; the extremes are not).
+  const auto least_aligned = [&](auto score) {
+    uint32_t best = near[0];
+    double best_s = INFINITY;
+    for (uint32_t i : near) {
+      const double s = score(normals(i));
+      if (s < best_s) best_s = s, best = i;
+    }
+    return normals(best);
+  };
+  V3 seed[3];
+  seed[0] = normals(near[0]);
+  seed[1] = least_aligned([&](V3 n) { return std::abs(dot(n, seed[0])); });
+  seed[0] = least_aligned([&](V3 n) { return std::abs(dot(n, seed[1])); });
+  if (std::abs(dot(seed[0], seed[1])) > min_cos) return f;  // one smooth sheet
+  seed[2] = least_aligned([&](V3 n) { return std::max(std::abs(dot(n, seed[0])), std::abs(dot(n, seed[1]))); });
+  if (std::max(std::abs(dot(seed[2], seed[0])), std::abs(dot(seed[2], seed[1]))) <= min_cos &&
+      fit_groups(pc, near, normals, seed, 3, radius, min_cos, o, f) && solve_target(f, v))
+    return f;
+  f = Feature{};
+  if (fit_groups(pc, near, normals, seed, 2, radius, min_cos, o, f) && solve_target(f, v)) return f;
+  return Feature{};
+}
+
+// Planes `a` and `b` have in common (same normal, each other's points on it).
+int shared_planes(const Feature& a, const Feature& b, double tolerance, int* which = nullptr) {
+  int shared = 0;
+  for (int i = 0; i < a.planes; ++i)
+    for (int j = 0; j < b.planes; ++j)
+      if (std::abs(dot(a.normal[i], b.normal[j])) > kSamePlane &&
+          std::abs(dot(sub(b.point[j], a.point[i]), a.normal[i])) < tolerance) {
+        if (which) which[shared] = i;
+        ++shared;
+        break;
+      }
+  return shared;
+}
+
+}  // namespace
+
+std::vector<float> estimate_point_normals(const PointIndex& points) {
+  const size_t n = points.points().size();
+  std::vector<float> out(3 * n);
+  for (size_t i = 0; i < n; ++i) {
+    const V3 nn = robust_normal(points, static_cast<uint32_t>(i));
+    for (int a = 0; a < 3; ++a) out[3 * i + a] = static_cast<float>(nn[a]);
+  }
+  return out;
+}
+
+void align_to_features(TriangleMesh& m, const PointIndex& points, const CreaseOptions& o, AlignStats* stats,
+                       std::vector<std::array<uint32_t, 2>>* chains, std::vector<uint32_t>* corners_out) {
+  if (chains) chains->clear();
+  if (corners_out) corners_out->clear();
+  AlignStats st;
+  if (!(o.angle_degrees > 0) || m.triangle_count() == 0 || points.points().size() == 0) {
+    if (stats) *stats = st;
+    return;
+  }
+  const uint32_t n = static_cast<uint32_t>(m.vertex_count());
+  const double min_cos = std::cos(o.angle_degrees * kPi / 180);
+  // Triangles at each vertex.
+  std::vector<uint32_t> offset(n + 1, 0), at;
+  for (uint32_t v : m.triangles) ++offset[v + 1];
+  for (uint32_t v = 0; v < n; ++v) offset[v + 1] += offset[v];
+  at.resize(offset[n]);
+  {
+    std::vector<uint32_t> fill(offset.begin(), offset.end() - 1);
+    for (uint32_t f = 0; f < m.triangle_count(); ++f)
+      for (int k = 0; k < 3; ++k) at[fill[m.triangles[3 * f + k]]++] = f;
+  }
+  std::vector<double> shortest(n, INFINITY), mean_edge(n, 0);
+  std::vector<uint32_t> edges(n, 0);
+  for (uint32_t f = 0; f < m.triangle_count(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      const uint32_t u = m.triangles[3 * f + k], w = m.triangles[3 * f + (k + 1) % 3];
+      const double l = std::sqrt(dot(sub(pos(m, u), pos(m, w)), sub(pos(m, u), pos(m, w))));
+      shortest[u] = std::min(shortest[u], l), shortest[w] = std::min(shortest[w], l);
+      mean_edge[u] += l, mean_edge[w] += l, ++edges[u], ++edges[w];
+    }
+
+  // 1. What the points show around each vertex, at QEM's positions.
+  PointNormals normals(points);
+  std::vector<Feature> feature(n);
+  std::vector<uint32_t> near;
+  for (uint32_t v = 0; v < n; ++v) {
+    if (edges[v] == 0) continue;
+    feature[v] = classify(points, normals, pos(m, v), 0.6 * mean_edge[v] / edges[v], min_cos, o, near);
+    st.line_vertices += feature[v].planes == 2;
+    st.corner_vertices += feature[v].planes == 3;
+  }
+
+  // 2. Moves onto the features: corners first, then the vertices nearest
+  // their line (each move judged against the moves already made).
+  std::vector<uint32_t> order;
+  std::vector<double> move(n, INFINITY);
+  for (uint32_t v = 0; v < n; ++v)
+    if (feature[v].planes) {
+      move[v] = std::sqrt(dot(sub(feature[v].target, pos(m, v)), sub(feature[v].target, pos(m, v))));
+      if (move[v] <= (feature[v].planes == 3 ? kCornerReach : kLineReach) * mean_edge[v] / edges[v]) order.push_back(v);
+    }
+  std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
+    if (feature[a].planes != feature[b].planes) return feature[a].planes > feature[b].planes;
+    if (move[a] / shortest[a] != move[b] / shortest[b]) return move[a] / shortest[a] < move[b] / shortest[b];
+    return a < b;
+  });
+  std::vector<uint8_t> snapped(n, 0);
+  std::vector<V3> corners;  // taken: a second vertex on one corner would make a null edge
+  for (uint32_t v : order) {
+    const Feature& f = feature[v];
+    if (f.planes == 3) {
+      bool taken = false;
+      for (const V3& c : corners) taken = taken || dot(sub(c, f.target), sub(c, f.target)) < std::pow(0.25 * shortest[v], 2);
+      if (taken) continue;
+    }
+    const V3 old = pos(m, v);
+    bool ok = true;
+    std::vector<V3> old_normals;
+    for (uint32_t j = offset[v]; j < offset[v + 1]; ++j) old_normals.push_back(unit(face_normal(m, at[j])));
+    for (int a = 0; a < 3; ++a) m.positions[3 * size_t{v} + a] = static_cast<float>(f.target[a]);
+    for (uint32_t j = offset[v]; j < offset[v + 1] && ok; ++j) {
+      const uint32_t t = at[j];
+      const double q = quality(pos(m, m.triangles[3 * t]), pos(m, m.triangles[3 * t + 1]), pos(m, m.triangles[3 * t + 2]));
+      ok = q > kMinQuality && dot(unit(face_normal(m, t)), old_normals[j - offset[v]]) > 0;
+    }
+    if (!ok) {
+      for (int a = 0; a < 3; ++a) m.positions[3 * size_t{v} + a] = static_cast<float>(old[a]);
+      continue;
+    }
+    snapped[v] = 1;
+    ++st.snapped;
+    if (f.planes == 3 && corners_out) corners_out->push_back(v);
+    if (f.planes == 3) corners.push_back(f.target);
+  }
+
+  // 3. Flips: an edge c-d whose two triangles' far corners u, w lie on one
+  // line (two planes in common, the segment along them) becomes u-w, so
+  // the line runs along control edges instead of zig-zagging across them.
+  const auto chain = [&](uint32_t u, uint32_t w) {
+    if (!snapped[u] || !snapped[w]) return false;
+    const V3 d = sub(pos(m, w), pos(m, u));
+    const double len = std::sqrt(dot(d, d));
+    if (!(len > 0)) return false;
+    int which[3];
+    if (shared_planes(feature[u], feature[w], 0.1 * len, which) < 2) return false;
+    for (int s = 0; s < 2; ++s)
+      if (std::abs(dot(d, feature[u].normal[which[s]])) > kAlong * len) return false;
+    return true;
+  };
+  std::unordered_map<uint64_t, uint32_t> edge;
+  std::vector<int> valence(n, 0);
+  for (uint32_t f = 0; f < m.triangle_count(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      edge[key(m.triangles[3 * f + k], m.triangles[3 * f + (k + 1) % 3])] = f;
+      ++valence[m.triangles[3 * f + k]];  // triangles at a vertex: its valence on a closed mesh
+    }
+  const auto third = [&](uint32_t f, uint32_t a, uint32_t b) {
+    for (int k = 0; k < 3; ++k)
+      if (m.triangles[3 * f + k] != a && m.triangles[3 * f + k] != b) return m.triangles[3 * f + k];
+    return a;
+  };
+  for (int pass = 0; pass < 4; ++pass) {
+    size_t flips = 0;
+    for (uint32_t f = 0; f < m.triangle_count(); ++f)
+      for (int k = 0; k < 3; ++k) {
+        const uint32_t c = m.triangles[3 * f + k], d = m.triangles[3 * f + (k + 1) % 3];
+        const auto twin = edge.find(key(d, c));
+        if (twin == edge.end()) continue;
+        const uint32_t g = twin->second, u = third(f, c, d), w = third(g, c, d);
+        if (u == w || edge.count(key(u, w)) || edge.count(key(w, u))) continue;
+        if (valence[c] <= 3 || valence[d] <= 3 || chain(c, d) || !chain(u, w)) continue;
+        const V3 pu = pos(m, u), pw = pos(m, w), pc = pos(m, c), pd = pos(m, d);
+        const V3 old = unit(V3{face_normal(m, f)[0] + face_normal(m, g)[0], face_normal(m, f)[1] + face_normal(m, g)[1],
+                               face_normal(m, f)[2] + face_normal(m, g)[2]});
+        if (quality(pu, pc, pw) < 0.05 || quality(pw, pd, pu) < 0.05) continue;
+        if (dot(unit(cross(sub(pc, pu), sub(pw, pu))), old) <= 0 || dot(unit(cross(sub(pd, pw), sub(pu, pw))), old) <= 0) continue;
+        // f = (c, d, u) -> (u, c, w); g = (d, c, w) -> (w, d, u).
+        edge.erase(key(c, d)), edge.erase(key(d, c));
+        m.triangles[3 * f] = u, m.triangles[3 * f + 1] = c, m.triangles[3 * f + 2] = w;
+        m.triangles[3 * g] = w, m.triangles[3 * g + 1] = d, m.triangles[3 * g + 2] = u;
+        edge[key(u, c)] = f, edge[key(c, w)] = f, edge[key(w, u)] = f;
+        edge[key(w, d)] = g, edge[key(d, u)] = g, edge[key(u, w)] = g;
+        --valence[c], --valence[d], ++valence[u], ++valence[w];
+        ++flips;
+        k = 3;  // f changed: on to the next triangle
+      }
+    st.flips += flips;
+    if (flips == 0) break;
+  }
+  // 4. Splits: where a line stops at a vertex (a dart) because no vertex
+  // lies on it further on, the edge it crosses next is split at the line,
+  // and the walk goes on from the new vertex until it meets a vertex of
+  // the line (or a corner) next to it.  Capped at a tenth of the vertices.
+  if (o.split) {
+    std::vector<std::vector<uint32_t>> tris(m.vertex_count());
+    for (uint32_t f = 0; f < m.triangle_count(); ++f)
+      for (int k = 0; k < 3; ++k) tris[m.triangles[3 * f + k]].push_back(f);
+    const size_t cap = m.vertex_count() / 10;
+    const auto drop = [&](uint32_t v, uint32_t f) { tris[v].erase(std::find(tris[v].begin(), tris[v].end(), f)); };
+    const auto add_triangle = [&](uint32_t f, uint32_t a, uint32_t b, uint32_t c) {
+      if (f == m.triangle_count()) m.triangles.insert(m.triangles.end(), {a, b, c});
+      else m.triangles[3 * f] = a, m.triangles[3 * f + 1] = b, m.triangles[3 * f + 2] = c;
+      edge[key(a, b)] = f, edge[key(b, c)] = f, edge[key(c, a)] = f;
+    };
+    const uint32_t first = static_cast<uint32_t>(m.vertex_count());
+    for (uint32_t start = 0; start < first && st.splits < cap; ++start) {
+      if (!snapped[start] || feature[start].planes != 2) continue;
+      for (double sign : {1.0, -1.0}) {
+        uint32_t u = start;
+        for (int steps = 0; steps < 16 && st.splits < cap; ++steps) {
+          const V3 dir = {sign * feature[start].dir[0], sign * feature[start].dir[1], sign * feature[start].dir[2]};
+          const V3 pu = pos(m, u);
+          // Done when the line goes on along an edge of u already.
+          bool joined = false;
+          for (uint32_t f : tris[u])
+            for (int k = 0; k < 3; ++k) {
+              const uint32_t v = m.triangles[3 * f + k];
+              if (v != u && chain(u, v) && dot(sub(pos(m, v), pu), dir) > 0) joined = true;
+            }
+          if (joined) break;
+          // The triangle at u whose far edge the line crosses.
+          uint32_t best_f = 0, c = 0, d = 0;
+          double best_gap = INFINITY, best_s = 0;
+          for (uint32_t f : tris[u]) {
+            int k = 0;
+            while (m.triangles[3 * f + k] != u) ++k;
+            const uint32_t a = m.triangles[3 * f + (k + 1) % 3], b = m.triangles[3 * f + (k + 2) % 3];
+            // Closest points of the line u + s dir and the segment a + l (b - a).
+            const V3 pa = pos(m, a), ab = sub(pos(m, b), pa), ua = sub(pa, pu);
+            const double bb = dot(ab, ab), db = dot(dir, ab), den = bb - db * db;
+            if (!(den > 1e-12 * bb)) continue;
+            const double l = (db * dot(dir, ua) - dot(ab, ua)) / den;
+            if (l < 0.2 || l > 0.8) continue;
+            const double s = dot(dir, ua) + l * db;
+            const V3 gap = sub(V3{pa[0] + l * ab[0], pa[1] + l * ab[1], pa[2] + l * ab[2]}, V3{pu[0] + s * dir[0], pu[1] + s * dir[1], pu[2] + s * dir[2]});
+            const double g = std::sqrt(dot(gap, gap));
+            if (s > 0 && g < 0.5 * std::sqrt(bb) && g < best_gap) best_gap = g, best_f = f, c = a, d = b, best_s = s;
+          }
+          if (!std::isfinite(best_gap)) break;
+          const auto twin = edge.find(key(d, c));
+          if (twin == edge.end() || chain(c, d)) break;
+          const uint32_t f = best_f, g = twin->second, w = third(g, c, d);
+          const V3 px = {pu[0] + best_s * dir[0], pu[1] + best_s * dir[1], pu[2] + best_s * dir[2]};
+          const V3 pc = pos(m, c), pd = pos(m, d), pw = pos(m, w);
+          const V3 nf = unit(face_normal(m, f)), ng = unit(face_normal(m, g));
+          // The four new triangles: not slivers, not turned over.
+          if (quality(pc, px, pu) < 0.05 || quality(px, pd, pu) < 0.05 || quality(pd, px, pw) < 0.05 || quality(px, pc, pw) < 0.05) break;
+          if (dot(unit(cross(sub(px, pc), sub(pu, pc))), nf) <= 0 || dot(unit(cross(sub(pd, px), sub(pu, px))), nf) <= 0 ||
+              dot(unit(cross(sub(px, pd), sub(pw, pd))), ng) <= 0 || dot(unit(cross(sub(pc, px), sub(pw, px))), ng) <= 0)
+            break;
+          // f = (c, d, u) -> (c, x, u) + (x, d, u); g = (d, c, w) -> (d, x, w) + (x, c, w).
+          const uint32_t x = static_cast<uint32_t>(m.vertex_count());
+          for (int a = 0; a < 3; ++a) m.positions.push_back(static_cast<float>(px[a]));
+          feature.push_back(feature[start]);
+          snapped.push_back(1);
+          valence.push_back(4);
+          ++valence[u], ++valence[w];
+          tris.emplace_back();
+          edge.erase(key(c, d)), edge.erase(key(d, c));
+          const uint32_t f2 = static_cast<uint32_t>(m.triangle_count());
+          add_triangle(f, c, x, u);
+          add_triangle(f2, x, d, u);
+          const uint32_t g2 = static_cast<uint32_t>(m.triangle_count());
+          add_triangle(g, d, x, w);
+          add_triangle(g2, x, c, w);
+          drop(d, f), tris[d].push_back(f2), tris[u].push_back(f2);
+          drop(c, g), tris[c].push_back(g2), tris[w].push_back(g2);
+          tris[x] = {f, f2, g, g2};
+          ++st.splits;
+          u = x;
+        }
+      }
+    }
+  }
+  if (chains) {
+    chains->clear();
+    for (const auto& [uv, f] : edge) {
+      const uint32_t u = static_cast<uint32_t>(uv >> 32), w = static_cast<uint32_t>(uv);
+      if (u < w && edge.count(key(w, u)) && chain(u, w)) chains->push_back({u, w});
+    }
+    std::sort(chains->begin(), chains->end());
+  }
+  if (stats) *stats = st;
+}
+
+}  // namespace dbss

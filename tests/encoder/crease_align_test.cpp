@@ -1,0 +1,123 @@
+// The control mesh aligned to the feature lines (dbss/encoder/crease_align.h)
+// before the crease tags are found: on a sampled cube the tagged edges lie on
+// the cube's edges and form long chains (few darts), and nothing moves on a
+// smooth shape.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+
+#include "../crease_shapes.h"
+#include "../shapes.h"
+#include "dbss/decoder/topology.h"
+#include "dbss/encoder/crease_align.h"
+#include "dbss/encoder/encode.h"
+#include "dbss/measure/mesh_distance.h"
+#include "dbss/measure/surface_samples.h"
+
+using namespace dbss;
+
+namespace {
+
+PointCloud sampled(const TriangleMesh& m, size_t n) {
+  const std::vector<double> p = sample_surface(m, n, 5);
+  PointCloud pc;
+  pc.xyz.assign(p.begin(), p.end());
+  return pc;
+}
+
+// Which of the cube's 12 edges (|x| = |y| = 1 and so on, within tol) holds
+// the point: a bit per face pair it is on, 0 when on none.
+int cube_faces(const float* p, double tol) {
+  int faces = 0;
+  for (int k = 0; k < 3; ++k)
+    if (std::abs(std::abs(p[k]) - 1.0) < tol) faces |= (p[k] > 0 ? 1 : 2) << (2 * k);
+  return faces;
+}
+
+int bits(int x) {
+  int n = 0;
+  for (; x; x &= x - 1) ++n;
+  return n;
+}
+
+}  // namespace
+
+TEST_CASE("a sampled cube: tagged control edges run along the cube's edges in chains") {
+  const PointCloud pc = sampled(test::cube(), 40000);
+  EncodeOptions o;
+  o.levels = 1;
+  o.threads = 2;
+  o.creases.angle_degrees = 30;
+  auto e = encode_points(pc, o);
+  REQUIRE(e.ok());
+  const Encoding& enc = e.value();
+  CHECK(enc.creases.aligned > 100);
+  CHECK(enc.creases.chain_edges > 100);
+  REQUIRE(!enc.contents.creases.empty());
+  auto t = build_topology(static_cast<uint32_t>(enc.control.vertex_count()), enc.control.triangles).value();
+  // Tolerance: Draco's rounding of the control positions.
+  const double tol = 4.0 / (1 << enc.control_bits) + 1e-4;
+  double along = 0;
+  size_t tagged = 0, on_edge = 0;
+  for (uint32_t i = 0; i < t.edge_count(); ++i) {
+    if (!enc.contents.creases.edge[i]) continue;
+    ++tagged;
+    const uint32_t u = t.triangles[t.edge_half[i]], w = t.triangles[next_half(t.edge_half[i])];
+    const float* pu = &enc.control.positions[3 * size_t{u}];
+    const float* pw = &enc.control.positions[3 * size_t{w}];
+    // Both ends on one of the cube's edges (two faces in common).
+    if (bits(cube_faces(pu, tol) & cube_faces(pw, tol)) >= 2) {
+      ++on_edge;
+      along += std::sqrt(std::pow(pu[0] - pw[0], 2.0) + std::pow(pu[1] - pw[1], 2.0) + std::pow(pu[2] - pw[2], 2.0));
+    }
+  }
+  // Before alignment: 61 of 89 tagged edges on the cube's edges, 8 of the
+  // 24 units of edge length covered, 106 darts.
+  CHECK(on_edge >= tagged * 8 / 10);
+  CHECK(along >= 0.8 * 24);
+  CHECK(enc.creases.darts * 2 < enc.creases.creases);
+  CHECK(enc.creases.corners >= 4);  // of 8: the vertices QEM left within reach of a corner
+}
+
+TEST_CASE("alignment moves nothing on smooth shapes") {
+  for (const TriangleMesh& m : {test::uv_sphere(24, 32), test::torus(48, 24)}) {
+    const PointCloud pc = sampled(m, 12000);
+    const PointIndex index(pc);
+    TriangleMesh control = m;  // the shape's own mesh as a control mesh: vertices on the points' surface
+    CreaseOptions o;
+    o.angle_degrees = 30;
+    AlignStats st;
+    std::vector<std::array<uint32_t, 2>> chains;
+    align_to_features(control, index, o, &st, &chains);
+    CHECK(st.line_vertices == 0);
+    CHECK(st.corner_vertices == 0);
+    CHECK(st.snapped == 0);
+    CHECK(chains.empty());
+    CHECK(control.positions == m.positions);
+    CHECK(control.triangles == m.triangles);
+  }
+}
+
+TEST_CASE("a sampled cube's refined levels: creases and one-sided sampling keep the edges sharp") {
+  const TriangleMesh truth = test::cube();
+  const PointCloud pc = sampled(truth, 40000);
+  const double diagonal = 2 * std::sqrt(3.0);
+  double mean[2] = {}, worst[2] = {};  // level 2's, over the diagonal
+  for (int on = 0; on < 2; ++on) {
+    EncodeOptions o;
+    o.levels = 2;
+    o.threads = 2;
+    o.creases.angle_degrees = on ? 30 : 0;
+    auto e = encode_points(pc, o);
+    REQUIRE(e.ok());
+    const Encoding& enc = e.value();
+    const TriangleMesh level{enc.levels.positions[2], enc.levels.triangles[2]};
+    const MeshDistance d = mesh_distance(level, truth, {40000, 1, 2});
+    mean[on] = d.mean() / diagonal, worst[on] = d.max() / diagonal;
+  }
+  INFO("level 2 off: " << mean[0] << " / " << worst[0] << ", on: " << mean[1] << " / " << worst[1]);
+  // When written: mean 1.02e-4 off, 5.1e-5 on.  The Hausdorff distance is
+  // not checked: a few odd vertices beside a chain's gap still overshoot
+  // (3.5% off, 3.9% on here; under 1% with crease_bench's seed).
+  CHECK(mean[1] < 0.7 * mean[0]);
+}
