@@ -29,7 +29,7 @@ namespace {
 }  // namespace
 
 const char* coding_name(format::DisplacementCoding c) {
-  return c == format::DisplacementCoding::byte_planes ? "byte_planes" : "varint";
+  return format::coding_name(c);
 }
 
 InfoReport inspect_bytes(std::span<const uint8_t> bytes, bool hashes, const format::Limits& limits) {
