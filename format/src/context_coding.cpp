@@ -11,9 +11,11 @@ namespace dbss::format::detail {
 namespace {
 
 // The model of spec section 9b.  Probabilities are of a 0 bit in units of
-// 2^-11; an adaptive one moves 1/32 of the way towards each bit it codes,
-// so it never reaches 0 or 2048 and every bit stays codable.
-constexpr uint32_t kProbBits = 11;
+// 2^-15; an adaptive one moves 1/32 of the way towards each bit it codes,
+// so it never reaches 0 or 2^15 and every bit stays codable.  15 bits, not
+// LZMA's 11: a level past the points' density is 99% zeros, and 11 bits
+// cannot code a zero in under 0.022 bits (15 bits: 0.0014).
+constexpr uint32_t kProbBits = 15;
 constexpr uint16_t kHalf = 1u << (kProbBits - 1);
 constexpr uint32_t kAdaptShift = 5;
 constexpr uint32_t kTop = 1u << 24;  // the range is renormalised below this

@@ -19,7 +19,7 @@ struct RangeDecoder {
   }
 
   uint32_t decode(uint32_t probability) {
-    const uint32_t bound = (range >> 11) * probability;
+    const uint32_t bound = (range >> 15) * probability;
     uint32_t bit;
     if (code < bound) {
       bit = 0;
@@ -46,11 +46,11 @@ struct RangeDecoder {
   // "Probabilities": an adaptive one, updated after the bit.
   uint32_t adaptive(uint32_t& probability) {
     const uint32_t bit = decode(probability);
-    if (bit == 0) probability = probability + ((2048 - probability) >> 5);
+    if (bit == 0) probability = probability + ((32768 - probability) >> 5);
     else probability = probability - (probability >> 5);
     return bit;
   }
-  uint32_t fixed() { return decode(1024); }
+  uint32_t fixed() { return decode(16384); }
 };
 
 int64_t magnitude(int64_t q) { return q < 0 ? -q : q; }
@@ -58,13 +58,13 @@ int64_t magnitude(int64_t q) { return q < 0 ? -q : q; }
 }  // namespace
 
 const char* decode_context_stream(std::span<const uint8_t> stream, uint64_t n, std::vector<int32_t>& q) {
-  // "The model": every probability starts at 1024 in each chunk.
+  // "The model": every probability starts at 16384 in each chunk.
   uint32_t zero[7], sign[3], mag[7][14], exp[25];
-  for (auto& v : zero) v = 1024;
-  for (auto& v : sign) v = 1024;
+  for (auto& v : zero) v = 16384;
+  for (auto& v : sign) v = 16384;
   for (auto& row : mag)
-    for (auto& v : row) v = 1024;
-  for (auto& v : exp) v = 1024;
+    for (auto& v : row) v = 16384;
+  for (auto& v : exp) v = 16384;
 
   RangeDecoder rc(stream);
   q.assign(n, 0);
