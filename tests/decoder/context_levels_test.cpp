@@ -9,6 +9,7 @@
 #include "dbss/decoder/progressive.h"
 #include "dbss/format/reader.h"
 #include "file_builder.h"
+#include "levl_context.h"
 #include "reference.h"
 
 using namespace dbss;
@@ -69,4 +70,20 @@ TEST_CASE("a level in context coding decodes to the same bits as in the zstd cod
     REQUIRE(ref.levels.size() == expect.size());
     for (size_t l = 0; l < expect.size(); ++l) CHECK(dbss_ref::fnv1a64(ref.levels[l]) == expect[l]);
   }
+}
+
+TEST_CASE("the reference decoder reads the spec's example streams") {
+  // dbss-format.md section 9b, "Examples", from the spec's text alone.
+  const std::vector<uint8_t> first = {0x4f, 0x13, 0xbd, 0xa6, 0xd9, 0xa8, 0x05, 0xff,
+                                      0xff, 0xdf, 0xff, 0xfc, 0x80, 0x00, 0x00, 0x00};
+  std::vector<int32_t> q;
+  CHECK(std::string(dbss_ref::detail::decode_context_stream(first, 8, q)).empty());
+  CHECK(q == std::vector<int32_t>{0, 1, -1, 20, 0, 0, -3, 1 << 24});
+  CHECK(std::string(dbss_ref::detail::decode_context_stream(std::vector<uint8_t>(7, 0), 1000, q)).empty());
+  CHECK(q == std::vector<int32_t>(1000, 0));
+  // Read for 20 values it runs out (compression); for 7, bytes are left
+  // over (compression too).  (For 9 it is valid: the flush's last bytes
+  // hold a few more zeros, which is why odd_count, not the stream, says n.)
+  CHECK(std::string(dbss_ref::detail::decode_context_stream(first, 20, q)) == "compression");
+  CHECK(std::string(dbss_ref::detail::decode_context_stream(first, 7, q)) == "compression");
 }

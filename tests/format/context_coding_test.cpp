@@ -167,3 +167,19 @@ TEST_CASE("hostile coding-2 streams give the spec's codes when cut or extended o
     CHECK(r.status().offset() == level_entry(toc, 2).offset + 8 + 12);
   }
 }
+
+TEST_CASE("context coding gives the spec's example streams") {
+  // dbss-format.md section 9b, "Examples".
+  Level level;
+  level.index = 1;
+  level.step = 1;
+  level.coding = DisplacementCoding::context;
+  level.q = {0, 1, -1, 20, 0, 0, -3, kMaxAbsDisplacement};
+  const std::vector<uint8_t> first = {0x4f, 0x13, 0xbd, 0xa6, 0xd9, 0xa8, 0x05, 0xff,
+                                      0xff, 0xdf, 0xff, 0xfc, 0x80, 0x00, 0x00, 0x00};
+  auto d = encode_level(level, 19).value();
+  CHECK(std::vector<uint8_t>(d.begin() + 16, d.end()) == first);
+  level.q.assign(1000, 0);
+  d = encode_level(level, 19).value();
+  CHECK(std::vector<uint8_t>(d.begin() + 16, d.end()) == std::vector<uint8_t>(7, 0));
+}
