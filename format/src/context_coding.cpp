@@ -19,7 +19,7 @@ constexpr uint32_t kProbBits = 15;
 constexpr uint16_t kHalf = 1u << (kProbBits - 1);
 constexpr uint32_t kAdaptShift = 5;
 constexpr uint32_t kTop = 1u << 24;  // the range is renormalised below this
-constexpr int kUnary = 14;           // magnitudes 1..15 in unary, then Exp-Golomb
+constexpr int kUnary = 14;           // magnitudes 1..14 in unary; 14 ones: 15 or more, Exp-Golomb follows
 constexpr int kMaxExponent = 24;     // |q| <= 2^24 needs at most 24 suffix bits
 constexpr uint32_t kClasses = 7;
 
