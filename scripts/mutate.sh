@@ -45,6 +45,14 @@ m varint-fast-path-seven format/src/rules.cpp \
 m writer-crc-short format/src/writer.cpp \
   'crc32c(std::span<const uint8_t>(out.data() + start, out.size() - start))' \
   'crc32c(std::span<const uint8_t>(out.data() + start, out.size() - start - 1))'
+# LEVL coding 2 (spec section 9b).
+m context-adapt-shift-4 format/src/context_coding.cpp \
+  'constexpr uint32_t kAdaptShift = 5;' 'constexpr uint32_t kAdaptShift = 4;'
+m context-overrun-unchecked format/src/context_coding.cpp \
+  '    if (d.overrun()) return overrun(i);
+    q[i] = v;' '    q[i] = v;'
+m context-leftover-accepted format/src/context_coding.cpp \
+  'if (d.at() != stream.size())' 'if (false && d.at() != stream.size())'
 # Decoder.
 m reflected-wing-signs decoder/src/butterfly_terms.h \
   $'        add(tri[x], -1.0 / 16);\n        add(tri[next_half(x)], -1.0 / 16);\n        add(away, 1.0 / 16);' \

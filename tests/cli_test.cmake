@@ -47,6 +47,8 @@ foreach(stage 1-occupied-cells 2-carved-cells 3-triangulated 4-shrink-wrapped 5-
   endif()
 endforeach()
 expect_run(0 "complete, every chunk verified" ${DBSS} info ${g})
+# info names each level's coding; a golden file of format 1.2 (section 9b).
+expect_run(0 "format 1\\.2, 3 levels.*\n1 .* context " ${DBSS} info ${SOURCE}/tests/golden/v1/bipyramid9-context-3-levels.dbss)
 # The default is --levels auto: the example's 8000 points stop it at level 3
 # (2462 vertices at level 2, 9854 at level 3); the decoded finest level is 3.
 expect_run(0 "3 level\\(s\\) \\(auto: level 3 is the first with more vertices than the [0-9]+ points\\)"

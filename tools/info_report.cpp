@@ -28,10 +28,6 @@ namespace {
 
 }  // namespace
 
-const char* coding_name(format::DisplacementCoding c) {
-  return c == format::DisplacementCoding::byte_planes ? "byte_planes" : "varint";
-}
-
 InfoReport inspect_bytes(std::span<const uint8_t> bytes, bool hashes, const format::Limits& limits) {
   DecoderOptions options;
   options.limits = limits;
@@ -111,7 +107,7 @@ std::string info_json(const InfoReport& rep, const std::optional<std::string>& p
     if (l >= 1 && l <= r.levels_ready()) {
       const auto& lv = r.level(l);
       appendf(o, ", \"odd\": %zu, \"step\": %.9g, \"coding\": \"%s\", \"bytes\": %llu", lv.q.size(), lv.step,
-              coding_name(lv.coding), static_cast<unsigned long long>(rep.level_bytes[l - 1]));
+              format::coding_name(lv.coding), static_cast<unsigned long long>(rep.level_bytes[l - 1]));
     }
     if (l < rep.level_hash.size()) appendf(o, ", \"fnv1a64\": \"%s\"", fnv1a64_hex(rep.level_hash[l]).c_str());
     const bool ready = l == 0 ? r.has_control() && rep.control.ok() : rep.control.ok() && l <= r.levels_ready();

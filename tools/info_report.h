@@ -41,6 +41,4 @@ InfoReport inspect_bytes(std::span<const uint8_t> bytes, bool hashes, const form
 // null when there is none (bytes from memory).
 std::string info_json(const InfoReport& report, const std::optional<std::string>& path);
 
-const char* coding_name(format::DisplacementCoding c);
-
 }  // namespace dbss::tools

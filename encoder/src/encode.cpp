@@ -160,6 +160,7 @@ Result<Encoding> encode_points(const PointIndex& input_index, const EncodeOption
   c.header.error_target = static_cast<float>(e.error);
   c.levels = e.levels.levels;
   c.level_data = e.levels.chunks;  // compressed once, when each level's coding was chosen
+  c.header.version_minor = format::minimum_version_minor(c);
   char error_text[32];
   std::snprintf(error_text, sizeof error_text, "%g", e.error);
   const std::string params = "grid=" + std::to_string(e.stages.carving.grid) + " control-faces=" +

@@ -45,7 +45,10 @@ Result<std::vector<uint8_t>> choose_coding(format::Level& level, int zstd_level)
   std::vector<uint8_t> best;
   format::DisplacementCoding best_coding = level.coding;
   bool first = true;
-  for (auto coding : {format::DisplacementCoding::byte_planes, format::DisplacementCoding::varint}) {
+  // The context coder last: on a tie the older codings keep the file
+  // readable by 1.1 readers.
+  for (auto coding : {format::DisplacementCoding::byte_planes, format::DisplacementCoding::varint,
+                      format::DisplacementCoding::context}) {
     level.coding = coding;
     auto data = format::encode_level(level, zstd_level);
     if (!data.ok()) return data.status();

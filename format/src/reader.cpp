@@ -8,6 +8,7 @@
 #include <new>
 
 #include "byte_io.h"
+#include "context_coding.h"
 #include "dbss/format/crc32c.h"
 #include "rules.h"
 
@@ -373,7 +374,10 @@ Status Reader::on_level() {
   const std::string name = "LEVL " + std::to_string(expected_index);
   if (level.index != expected_index)
     return fail(ErrorCode::bad_structure, name + ": level index field is " + std::to_string(level.index), at);
-  if (coding > 1) return fail(ErrorCode::bad_field, name + ": unknown coding " + std::to_string(coding), at + 1);
+  // Coding 2 is new in 1.2: in an older file it is unknown, as a 1.1 reader finds it.
+  const uint8_t codings = header_.version_minor >= kContextCodingVersionMinor ? 3 : 2;
+  if (coding >= codings)
+    return fail(ErrorCode::bad_field, name + ": unknown coding " + std::to_string(coding), at + 1);
   level.coding = static_cast<DisplacementCoding>(coding);
   if (load_u16(d + 2) != 0) return fail(ErrorCode::bad_field, name + ": reserved field is not zero", at + 2);
 
@@ -393,6 +397,17 @@ Status Reader::on_level() {
 
   const uint8_t* src = d + kLevelFixed;
   const size_t src_size = chunk_length_ - kLevelFixed;
+  if (level.coding == DisplacementCoding::context) {
+    if (raw_size != src_size)
+      return fail(ErrorCode::bad_field,
+                  name + ": raw_size " + std::to_string(raw_size) + " is not the coded stream's " +
+                      std::to_string(src_size) + " bytes",
+                  at + 12);
+    if (Status s = context_decode({src, src_size}, count, at + kLevelFixed, level.q); !s.ok())
+      return fail(s.code(), name + ": " + s.message(), s.offset());
+    levels_.push_back(std::move(level));
+    return {};
+  }
   const size_t frame = ZSTD_findFrameCompressedSize(src, src_size);
   if (ZSTD_isError(frame) || frame != src_size)
     return fail(ErrorCode::compression, name + ": payload is not exactly one zstd frame", at + kLevelFixed);

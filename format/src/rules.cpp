@@ -72,6 +72,7 @@ std::vector<uint8_t> pack_displacements(std::span<const int32_t> q, Displacement
 
 bool raw_size_valid(uint64_t raw_size, DisplacementCoding coding, uint64_t count) {
   if (coding == DisplacementCoding::byte_planes) return raw_size == 4 * count;
+  if (coding == DisplacementCoding::context) return raw_size >= 4;  // and = the stream's size (the reader checks)
   return raw_size >= count && raw_size <= 4 * count;
 }
 

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "byte_io.h"
+#include "context_coding.h"
 #include "dbss/format/crc32c.h"
 #include "rules.h"
 
@@ -50,7 +51,8 @@ Result<std::vector<uint8_t>> encode_level(const Level& level, int zstd_level) {
   auto bad = [&](const std::string& what) {
     return Status(ErrorCode::invalid_argument, "level " + std::to_string(level.index) + ": " + what);
   };
-  if (level.coding != DisplacementCoding::byte_planes && level.coding != DisplacementCoding::varint)
+  if (level.coding != DisplacementCoding::byte_planes && level.coding != DisplacementCoding::varint &&
+      level.coding != DisplacementCoding::context)
     return bad("unknown displacement coding");
   if (!std::isfinite(level.step) || !(level.step > 0)) return bad("step must be finite and positive");
   if (level.q.size() > 0xFFFFFFFFu) return bad("too many displacements");
@@ -58,6 +60,15 @@ Result<std::vector<uint8_t>> encode_level(const Level& level, int zstd_level) {
     if (level.q[i] > kMaxAbsDisplacement || level.q[i] < -kMaxAbsDisplacement)
       return bad("displacement #" + std::to_string(i) + " = " + std::to_string(level.q[i]) + " is outside -2^24..2^24");
 
+  if (level.coding == DisplacementCoding::context) {
+    // No zstd: raw_size is the coded stream's own size (spec section 9b).
+    const std::vector<uint8_t> stream = context_encode(level.q);
+    std::vector<uint8_t> d;
+    put_level_fields(d, level);
+    put_u32(d, static_cast<uint32_t>(stream.size()));
+    put_bytes(d, stream.data(), stream.size());
+    return d;
+  }
   const std::vector<uint8_t> raw = pack_displacements(level.q, level.coding);
   std::vector<uint8_t> d;
   put_level_fields(d, level);
@@ -146,6 +157,12 @@ std::vector<uint8_t> assemble(std::span<const uint8_t> head_data, std::span<cons
   return assemble_file(head_data, body, nullptr);
 }
 
+uint16_t minimum_version_minor(const FileContents& c) {
+  for (const Level& level : c.levels)
+    if (level.coding == DisplacementCoding::context) return kContextCodingVersionMinor;
+  return c.creases.empty() ? 0 : kCreaseVersionMinor;
+}
+
 Result<std::vector<uint8_t>> serialize(const FileContents& c, const WriteOptions& options) {
   auto file = serialize_with_toc(c, options);
   if (!file.ok()) return file.status();
@@ -184,6 +201,10 @@ Result<SerializedFile> serialize_with_toc(const FileContents& c, const WriteOpti
   for (size_t i = 0; i < c.levels.size(); ++i) {
     const Level& level = c.levels[i];
     if (level.index != i + 1) return bad("levels[" + std::to_string(i) + "] has index " + std::to_string(level.index));
+    if (level.coding == DisplacementCoding::context && c.header.version_minor < kContextCodingVersionMinor)
+      return bad("level " + std::to_string(i + 1) + "'s context coding needs version 1." +
+                 std::to_string(kContextCodingVersionMinor) + ", the header says 1." +
+                 std::to_string(c.header.version_minor));
     if (level.q.size() != odd[i])
       return bad("level " + std::to_string(i + 1) + " has " + std::to_string(level.q.size()) +
                  " displacements; its odd-vertex count is " + std::to_string(odd[i]));

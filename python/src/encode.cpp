@@ -189,7 +189,7 @@ py::dict stats_dict(const Encoding& e, size_t points_in, const EncodeOptions& o)
     d["clamped"] = ls.clamped;
     d["bytes"] = ls.bytes;
     d["bits_per_odd"] = 8.0 * static_cast<double>(ls.bytes) / static_cast<double>(std::max<size_t>(1, ls.odd));
-    d["coding"] = ls.coding == format::DisplacementCoding::byte_planes ? "byte_planes" : "varint";
+    d["coding"] = format::coding_name(ls.coding);
     levels.append(d);
   }
   py::list warnings;

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "control_mesh.h"
+#include "levl_context.h"
 
 namespace dbss_ref {
 
@@ -205,12 +206,12 @@ struct Levl {
   float step;
 };
 
-Levl read_levl(std::span<const uint8_t> d, uint32_t level, uint64_t edges) {
+Levl read_levl(std::span<const uint8_t> d, uint32_t level, uint64_t edges, uint16_t minor) {
   if (d.size() < 16) fail("bad_structure");  // too short for its fields
   const uint8_t* p = d.data();
   if (p[0] != level) fail("bad_field");
   const uint8_t coding = p[1];
-  if (coding > 1) fail("bad_field");
+  if (coding > (minor >= 2 ? 2 : 1)) fail("bad_field");  // coding 2: version 1.2
   if (u16(p + 2) != 0) fail("bad_field");
   const uint32_t odd_count = u32(p + 4);
   if (odd_count != edges) fail("bad_field");
@@ -221,6 +222,13 @@ Levl read_levl(std::span<const uint8_t> d, uint32_t level, uint64_t edges) {
   const uint64_t n = odd_count;
   if (coding == 0 && raw_size != 4 * n) fail("bad_field");
   if (coding == 1 && (raw_size < n || raw_size > 4 * n)) fail("bad_field");
+  if (coding == 2) {
+    // Section 9b: no zstd; the stream is the rest of the chunk.
+    if (raw_size != d.size() - 16 || raw_size < 4) fail("bad_field");
+    const char* error = detail::decode_context_stream(d.subspan(16), n, out.q);
+    if (*error) fail(error);
+    return out;
+  }
 
   // Exactly one zstd frame, decompressing to exactly raw_size bytes.
   const std::span<const uint8_t> frame = d.subspan(16);
@@ -356,7 +364,7 @@ Decoded decode(std::span<const uint8_t> file) {
         // decoding.md section 2 step 6, checked when level 1 is computed.
         if (level == 1 && !detail::creases_fit(out.levels.back())) fail("bad_mesh");
         // odd_count = E_{level-1}, from the derived counts.
-        const Levl levl = read_levl(data, level, head.edges[level - 1]);
+        const Levl levl = read_levl(data, level, head.edges[level - 1], head.minor);
         // Level l+1 from the displaced level l (decoding.md section 7).
         out.levels.push_back(subdivide(out.levels.back(), levl.q, levl.step));
       } else if (type_is(entry.type.data(), "meta")) {

@@ -15,9 +15,10 @@
 namespace dbss::test {
 
 // With `crease_degrees` > 0, the control mesh's edges whose dihedral angle
-// is over it are tagged (creases_from_dihedral): a version 1.1 file.
+// is over it are tagged (creases_from_dihedral): a version 1.1 file.  With
+// `context`, every level is coded with coding 2: a version 1.2 file.
 inline std::vector<uint8_t> build_file(const TriangleMesh& mesh, uint8_t levels, int32_t amplitude, float step,
-                                       uint32_t seed = 1, double crease_degrees = 0) {
+                                       uint32_t seed = 1, double crease_degrees = 0, bool context = false) {
   auto draco = encode_control_mesh(mesh, {});
   auto decoded = decode_control_mesh(draco.value(), 1 << 24, 1 << 24);
   auto topo = build_topology(static_cast<uint32_t>(decoded.value().vertex_count()), decoded.value().triangles);
@@ -41,7 +42,9 @@ inline std::vector<uint8_t> build_file(const TriangleMesh& mesh, uint8_t levels,
     format::Level level;
     level.index = l;
     level.step = step / static_cast<float>(1 << l);
-    level.coding = l % 2 ? format::DisplacementCoding::byte_planes : format::DisplacementCoding::varint;
+    level.coding = context ? format::DisplacementCoding::context
+                   : l % 2 ? format::DisplacementCoding::byte_planes
+                           : format::DisplacementCoding::varint;
     level.q.resize(*format::odd_vertex_count(control, l));
     for (auto& q : level.q) {
       s = s * 1664525u + 1013904223u;
@@ -49,6 +52,7 @@ inline std::vector<uint8_t> build_file(const TriangleMesh& mesh, uint8_t levels,
     }
     c.levels.push_back(std::move(level));
   }
+  c.header.version_minor = format::minimum_version_minor(c);
   return format::serialize(c).value();
 }
 

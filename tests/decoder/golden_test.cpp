@@ -30,6 +30,7 @@ struct Golden {
   int32_t amplitude;
   float step;
   double crease_degrees = 0;  // > 0: a version 1.1 file with crease tags
+  bool context = false;       // every level in coding 2: a version 1.2 file
 };
 
 std::vector<Golden> goldens() {
@@ -42,6 +43,11 @@ std::vector<Golden> goldens() {
       {"cube-creases-4-levels", test::cube(), 4, 40, 0.01f, 30},
       {"roof-creases-3-levels", test::roof_block(4), 3, 40, 0.01f, 30},
       {"cylinder-creases-3-levels", test::capped_cylinder(16, 3), 3, 40, 0.01f, 30},
+      // Version 1.2: LEVL coding 2 (dbss-format.md section 9b); amplitude
+      // 40 reaches the Exp-Golomb tail, 2 is mostly the zero flag.
+      {"torus-context-4-levels", test::jitter(test::torus(10, 5), 0.05f), 4, 40, 0.01f, 0, true},
+      {"bipyramid9-context-3-levels", test::jitter(test::bipyramid(9), 0.1f, 9), 3, 2, 0.02f, 0, true},
+      {"cube-creases-context-3-levels", test::cube(), 3, 20, 0.01f, 30, true},
   };
 }
 
@@ -83,7 +89,7 @@ TEST_CASE("golden files decode to the recorded bits at every level") {
 
 TEST_CASE("write golden files", "[.write-golden]") {
   for (const Golden& g : goldens()) {
-    const auto bytes = test::build_file(g.mesh, g.levels, g.amplitude, g.step, 1, g.crease_degrees);
+    const auto bytes = test::build_file(g.mesh, g.levels, g.amplitude, g.step, 1, g.crease_degrees, g.context);
     REQUIRE(io::write_file_atomic(kDir + g.name + ".dbss", bytes).ok());
     std::ostringstream text;
     for (uint64_t h : level_hashes(bytes)) {

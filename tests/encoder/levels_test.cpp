@@ -99,6 +99,7 @@ TEST_CASE("closed loop: the decoder reproduces the encoder's levels bit for bit,
     c.header.bbox_max = {float(s.hi), float(s.hi), float(s.hi)};
     c.control_mesh = draco.value();
     c.levels = enc.value().levels;
+    c.header.version_minor = format::minimum_version_minor(c);  // 2 when a level chose the context coder
     auto file = format::serialize(c);
     REQUIRE(file.ok());
     // The bytes choose_coding kept make the same file as compressing each

@@ -144,7 +144,8 @@ const Known kKnown[] = {
 TEST_CASE("damaged golden files give the same error code as the project's reader and decoder") {
   size_t cases = 0, errors = 0, known_cases = 0;
   std::vector<std::string> disagreements;
-  for (const char* name : {"bipyramid9-3-levels.dbss", "bordered-grid-3-levels.dbss", "roof-creases-3-levels.dbss"}) {
+  for (const char* name : {"bipyramid9-3-levels.dbss", "bordered-grid-3-levels.dbss", "roof-creases-3-levels.dbss",
+                           "bipyramid9-context-3-levels.dbss"}) {
     const auto good = read_golden(name);
     for (const Damaged& d : damaged_copies(good)) {
       ++cases;
@@ -173,4 +174,35 @@ TEST_CASE("damaged golden files give the same error code as the project's reader
   CHECK(cases > 300);
   for (const std::string& line : disagreements) UNSCOPED_INFO(line);
   CHECK(disagreements.empty());
+}
+
+TEST_CASE("every damaged byte of a coding-2 stream gives the reference's code and bits") {
+  // dbss-format.md section 9b: the range decoder's errors (a byte needed
+  // past the end, bytes left over, an Exp-Golomb prefix or a value out of
+  // range) or other values, the same in both decoders for every byte.
+  const auto good = read_golden("bipyramid9-context-3-levels.dbss");
+  const auto starts = chunk_starts(good);
+  size_t cases = 0, rejected = 0;
+  for (size_t at : starts) {
+    if (std::memcmp(&good[at + 4], "LEVL", 4) != 0) continue;
+    const uint32_t length = get_u32(good, at);
+    for (uint32_t i = 16; i < length; ++i) {
+      for (uint8_t flip : {uint8_t{0x01}, uint8_t{0x80}, uint8_t{0xFF}}) {
+        auto b = good;
+        b[at + 8 + i] ^= flip;
+        fix_crc(b, at);
+        const Outcome r = reference(b), p = project(b);
+        ++cases;
+        if (!r.error.empty()) ++rejected;
+        INFO("LEVL at " << at << ", stream byte " << i - 16 << " ^ " << int(flip));
+        REQUIRE(r.error == p.error);
+        REQUIRE(r.positions.size() == p.positions.size());
+        for (size_t l = 0; l < r.positions.size(); ++l)
+          REQUIRE(std::memcmp(r.positions[l].data(), p.positions[l].data(), 4 * r.positions[l].size()) == 0);
+      }
+    }
+  }
+  INFO(cases << " damaged streams, " << rejected << " rejected");
+  CHECK(cases > 300);
+  CHECK(rejected > 0);
 }

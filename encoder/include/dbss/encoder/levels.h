@@ -51,9 +51,10 @@ struct EncodedLevels {
   std::vector<std::vector<uint32_t>> triangles;
 };
 
-// Sets level.coding to the payload layout that makes the smaller LEVL chunk
-// data and returns that data (both layouts are compressed; the smaller one's
-// bytes are kept so nobody compresses the level again).
+// Sets level.coding to the payload layout that makes the smallest LEVL chunk
+// data and returns that data (every coding is tried; the smallest one's
+// bytes are kept so nobody compresses the level again).  A level coded
+// `context` needs a version 1.2 file (format::minimum_version_minor).
 Result<std::vector<uint8_t>> choose_coding(format::Level& level, int zstd_level);
 
 // Where the displacements come from: the closed loop (subdivision,

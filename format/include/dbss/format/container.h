@@ -58,6 +58,9 @@ inline constexpr ChunkType kCrea{'C', 'R', 'E', 'A'};  // crease tags (version 1
 
 // The minor version a file with a CREA chunk declares (and needs).
 inline constexpr uint16_t kCreaseVersionMinor = 1;
+// The minor version a file with a LEVL of coding 2 (context) declares (and
+// needs): a 1.1 reader rejects such a LEVL as an unknown coding.
+inline constexpr uint16_t kContextCodingVersionMinor = 2;
 
 struct Header {
   uint16_t version_major = kVersionMajor;
@@ -102,7 +105,13 @@ enum class ControlCodec : uint8_t { draco = 0 };
 enum class DisplacementCoding : uint8_t {
   byte_planes = 0,  // zigzag u32, all low bytes, then all second bytes, ...
   varint = 1,       // zigzag u32 as canonical LEB128
+  context = 2,      // adaptive binary range coder, no zstd (version 1.2, spec section 9b)
 };
+
+// "byte_planes", "varint" or "context" (spec section 9's names).
+inline const char* coding_name(DisplacementCoding c) {
+  return c == DisplacementCoding::byte_planes ? "byte_planes" : c == DisplacementCoding::varint ? "varint" : "context";
+}
 
 struct Level {
   uint8_t index = 0;  // 1..level_count

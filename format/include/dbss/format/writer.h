@@ -63,6 +63,11 @@ Result<std::vector<uint8_t>> encode_metadata(const std::vector<MetaEntry>& entri
 // can build any file, valid or not.
 std::vector<uint8_t> assemble(std::span<const uint8_t> head_data, std::span<const RawChunk> body);
 
+// The lowest minor version that can hold `contents`: 0, 1 with crease
+// tags, 2 with a level coded DisplacementCoding::context.  Writers that
+// want the widest readership set header.version_minor to this.
+uint16_t minimum_version_minor(const FileContents& contents);
+
 // A complete, valid file: checks `contents` against the format's rules
 // (including that each level has the odd-vertex count the control counts
 // imply) and returns invalid_argument naming the first problem.
