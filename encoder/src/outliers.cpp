@@ -239,6 +239,19 @@ std::unique_ptr<PointIndex> remove_outliers(const PointIndex& index, const Outli
     }
   }
 
+  // From here the per-point figures are kept by rank in that order (rank r
+  // is point order[r]), the neighbours as ranks and the coordinates copied
+  // in the same order: a point's neighbours then lie near it in memory as
+  // they do in space.  Read by input index, on 10M points in random order,
+  // nearly every neighbour's coordinates and figures missed the cache.
+  std::vector<uint32_t> rank_of(n);
+  PointCloud ranked;
+  ranked.xyz.resize(3 * n);
+  for (size_t r = 0; r < n; ++r) {
+    rank_of[order[r]] = static_cast<uint32_t>(r);
+    for (int a = 0; a < 3; ++a) ranked.xyz[3 * r + a] = pc.xyz[3 * size_t{order[r]} + a];
+  }
+  const std::vector<float>& xyz = ranked.xyz;
   // Mean distance to the k nearest other points, for every point.
   std::vector<double> reach(n);
   // Distance to the nearest other point.
@@ -265,18 +278,17 @@ std::unique_ptr<PointIndex> remove_outliers(const PointIndex& index, const Outli
     std::vector<uint32_t> idx(k + 1);
     std::vector<float> d2(k + 1);
     for (size_t r = from; r < to; ++r) {
-      const size_t i = order[r];
-      const size_t got = index.nearest_k(&pc.xyz[3 * i], k + 1, idx.data(), d2.data());
+      const size_t got = index.nearest_k(&xyz[3 * r], k + 1, idx.data(), d2.data());
       double sum = 0;
       size_t used = 0;
       // The first hit is the point itself (or a duplicate of it): skip one.
       for (size_t j = 1; j < got; ++j) {
         sum += std::sqrt(double{d2[j]});
         ++used;
-        neighbours[i * k + j - 1] = idx[j];
+        neighbours[r * k + j - 1] = rank_of[idx[j]];
       }
-      reach[i] = used ? sum / used : 0;
-      gap[i] = got > 1 ? std::sqrt(double{d2[1]}) : 0;
+      reach[r] = used ? sum / used : 0;
+      gap[r] = got > 1 ? std::sqrt(double{d2[1]}) : 0;
     }
   });
   // Each point's distance to the least-squares plane of its neighbours
@@ -286,18 +298,17 @@ std::unique_ptr<PointIndex> remove_outliers(const PointIndex& index, const Outli
     uint32_t ids[64];
     std::vector<double> sorted;
     for (size_t r = from; r < to; ++r) {
-      const size_t i = order[r];
       size_t m = 0;
-      for (size_t j = i * k; j < (i + 1) * k && m < 64; ++j)
+      for (size_t j = r * k; j < (r + 1) * k && m < 64; ++j)
         if (neighbours[j] != UINT32_MAX) ids[m++] = neighbours[j];
       if (m < 5) continue;
-      PointPlane plane = fit_plane(pc, ids, m);
+      PointPlane plane = fit_plane(ranked, ids, m);
       const PointPlane first = plane;
       // Once more without the neighbours far off the first plane: a second
       // stray among the neighbours tilts a least-squares plane towards it.
       const auto off_plane = [&](uint32_t q) {
         double d = 0;
-        for (int a = 0; a < 3; ++a) d += (pc.xyz[3 * q + a] - plane.point[a]) * plane.normal[a];
+        for (int a = 0; a < 3; ++a) d += (xyz[3 * q + a] - plane.point[a]) * plane.normal[a];
         return std::abs(d);
       };
       double residual[64];
@@ -307,7 +318,7 @@ std::unique_ptr<PointIndex> remove_outliers(const PointIndex& index, const Outli
       size_t inliers = 0;
       for (size_t j = 0; j < m; ++j)
         if (residual[j] <= cut) ids[inliers++] = ids[j];
-      if (inliers >= 5 && inliers < m) plane = fit_plane(pc, ids, inliers);
+      if (inliers >= 5 && inliers < m) plane = fit_plane(ranked, ids, inliers);
       // Neighbours along a line (a scan line, points piled on an edge)
       // leave the plane's tilt about that line to chance: no test then.
       if (!(plane.variance[1] > 0.05 * plane.variance[2]) || !(first.variance[1] > 0.05 * first.variance[2])) continue;
@@ -317,10 +328,10 @@ std::unique_ptr<PointIndex> remove_outliers(const PointIndex& index, const Outli
       // says nothing there.
       sorted.clear();
       for (size_t j = 0; j < (inliers >= 5 ? inliers : m); ++j) sorted.push_back(off_plane(ids[j]));
-      spread[i] = median_in_place(sorted);
+      spread[r] = median_in_place(sorted);
       double d = 0;
-      for (int a = 0; a < 3; ++a) d += (pc.xyz[3 * i + a] - plane.point[a]) * plane.normal[a];
-      off[i] = std::abs(d);
+      for (int a = 0; a < 3; ++a) d += (xyz[3 * r + a] - plane.point[a]) * plane.normal[a];
+      off[r] = std::abs(d);
     }
   });
   // Floors for the neighbourhood figures, from the whole cloud: where a
@@ -333,11 +344,10 @@ std::unique_ptr<PointIndex> remove_outliers(const PointIndex& index, const Outli
   in_parallel([&](size_t from, size_t to) {
     std::vector<double> around, around_off, around_gap;
     for (size_t r = from; r < to; ++r) {
-      const size_t i = order[r];
       around.clear();
       around_off.clear();
       around_gap.clear();
-      for (size_t j = i * k; j < (i + 1) * k; ++j) {
+      for (size_t j = r * k; j < (r + 1) * k; ++j) {
         if (neighbours[j] == UINT32_MAX) continue;
         around.push_back(reach[neighbours[j]]);
         around_gap.push_back(gap[neighbours[j]]);
@@ -345,7 +355,7 @@ std::unique_ptr<PointIndex> remove_outliers(const PointIndex& index, const Outli
       }
       const double local = std::max(median_in_place(around), reach_floor);
       if (!(local > 0)) continue;
-      bool isolated = reach[i] > o.isolation * local;
+      bool isolated = reach[r] > o.isolation * local;
       // Near the surface a stray point still has surface points for
       // neighbours, at a spacing or two: it stands off their plane, where a
       // surface point (even at a crease or on a thin wall) lies close to
@@ -359,24 +369,30 @@ std::unique_ptr<PointIndex> remove_outliers(const PointIndex& index, const Outli
       // sampler's or a scanner's line along an edge) the plane and the gaps
       // say nothing: no test there.
       const bool piled = median_in_place(around_gap) < 0.6 * gap_floor;
-      if (!isolated && !piled && off[i] >= 0 && off[i] > o.off_plane * local && off[i] > o.off_noise * median_in_place(around_off) &&
-          off[i] > o.off_noise * spread[i]) {
+      if (!isolated && !piled && off[r] >= 0 && off[r] > o.off_plane * local && off[r] > o.off_noise * median_in_place(around_off) &&
+          off[r] > o.off_noise * spread[r]) {
         // The nearest neighbour nearer the plane: a second stray beside
         // this one does not count.
         double lower_gap = 0;
-        for (size_t j = i * k; j < (i + 1) * k && lower_gap == 0; ++j) {
+        for (size_t j = r * k; j < (r + 1) * k && lower_gap == 0; ++j) {
           const uint32_t q = neighbours[j];
-          if (q == UINT32_MAX || !(off[q] >= 0 && off[q] < 0.5 * off[i])) continue;
+          if (q == UINT32_MAX || !(off[q] >= 0 && off[q] < 0.5 * off[r])) continue;
           double d2 = 0;
-          for (int a = 0; a < 3; ++a) d2 += std::pow(double{pc.xyz[3 * i + a]} - pc.xyz[3 * q + a], 2);
+          for (int a = 0; a < 3; ++a) d2 += std::pow(double{xyz[3 * r + a]} - xyz[3 * q + a], 2);
           lower_gap = std::sqrt(d2);
         }
         isolated = lower_gap == 0 || lower_gap > o.off_gap * std::max(median_in_place(around_gap), gap_floor);
       }
-      if (isolated) keep[i] = 0;
+      if (isolated) keep[order[r]] = 0;
     }
   });
   s.isolated = static_cast<size_t>(std::count(keep.begin(), keep.end(), 0));
+  // Over 100 bytes a point (the neighbour lists 64 of them) not needed by
+  // the clusters' test, which builds its own.
+  for (auto* figures : {&reach, &gap, &off, &spread}) std::vector<double>().swap(*figures);
+  std::vector<uint32_t>().swap(neighbours);
+  std::vector<uint32_t>().swap(rank_of);
+  std::vector<float>().swap(ranked.xyz);
 
   // Clusters among the points left.
   // With no point isolated the rest is the input and so is its index (a
