@@ -34,6 +34,18 @@ struct Sets {
 double median_in_place(std::vector<double>& v) {
   if (v.empty()) return 0;
   const size_t mid = v.size() / 2;
+  if (v.size() <= 32) {
+    // The per-point lists (16 figures): an insertion sort is several
+    // times quicker than nth_element there (which took 9 of the 70 s of
+    // CPU at 10M points), and v[mid] is the same value either way.
+    for (size_t i = 1; i < v.size(); ++i) {
+      const double x = v[i];
+      size_t j = i;
+      for (; j > 0 && x < v[j - 1]; --j) v[j] = v[j - 1];
+      v[j] = x;
+    }
+    return v[mid];
+  }
   std::nth_element(v.begin(), v.begin() + mid, v.end());
   return v[mid];
 }
