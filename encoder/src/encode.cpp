@@ -90,9 +90,8 @@ Result<Encoding> encode_points(const PointIndex& input_index, const EncodeOption
   if (o.on_progress && o.outliers.enabled) o.on_progress("removing outliers");
   OutlierOptions outliers = o.outliers;
   outliers.threads = std::max(1u, o.threads);
-  e.points = remove_outliers(input_index, outliers, &e.outliers);
-  std::unique_ptr<PointIndex> cleaned;
-  if (e.points.size() != input_index.points().size()) cleaned = std::make_unique<PointIndex>(e.points);
+  std::unique_ptr<PointIndex> cleaned = remove_outliers(input_index, outliers, &e.outliers, e.points);
+  if (!cleaned && e.points.size() != input_index.points().size()) cleaned = std::make_unique<PointIndex>(e.points);
   const PointIndex& index = cleaned ? *cleaned : input_index;
   const PointCloud& pc = index.points();
   e.seconds.outliers = since(t);
@@ -152,7 +151,7 @@ Result<Encoding> encode_points(const PointIndex& input_index, const EncodeOption
 
   // What a reader of the file should know about how far to trust it.
   t = Clock::now();
-  e.check = check_scan(e, index);
+  e.check = check_scan(e, index, std::max(1u, o.threads));
   e.seconds.check = since(t);
 
   t = Clock::now();

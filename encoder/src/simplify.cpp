@@ -194,6 +194,24 @@ class Simplifier {
     heap_.push({std::max(0.0, e), u, v, stamp_[u], stamp_[v], p});
   }
 
+  // A fresh run of `span` mark values, every mark below the first of them.
+  uint32_t next_mark(uint32_t span) {
+    if (mark_.empty()) mark_.assign(pos_.size(), 0);
+    if (mark_top_ > UINT32_MAX - span - 1) mark_.assign(pos_.size(), 0), mark_top_ = 0;
+    const uint32_t first = mark_top_ + 1;
+    mark_top_ += span;
+    return first;
+  }
+
+  size_t distinct_neighbours(uint32_t v) {
+    const uint32_t m = next_mark(1);
+    size_t count = 0;
+    for (uint32_t f : faces_of_[v])
+      for (int k = 0; k < 3; ++k)
+        if (const uint32_t w = tris_[3 * f + k]; w != v && mark_[w] != m) mark_[w] = m, ++count;
+    return count;
+  }
+
   void neighbours(uint32_t v, std::vector<uint32_t>& out) const {
     out.clear();
     for (uint32_t f : faces_of_[v])
@@ -211,18 +229,34 @@ class Simplifier {
     // loops), so it stays.
     const bool rim_edge = rim_[u] && rim_[v] && edge_faces(u, v) == 1;
     if (rim_[u] && rim_[v] && !rim_edge) return false;
-    neighbours(u, nu_);
-    neighbours(v, nv_);
+    // Only how many neighbours u and v have, and which they share, matter
+    // here: counted with marks rather than sorted lists (sorting them was a
+    // tenth of the simplifier's time).
+    const uint32_t mark_u = next_mark(3);
+    size_t count_u = 0, count_v = 0;
+    for (uint32_t f : faces_of_[u])
+      for (int k = 0; k < 3; ++k)
+        if (const uint32_t w = tris_[3 * f + k]; w != u && mark_[w] < mark_u) mark_[w] = mark_u, ++count_u;
+    // v's neighbours: mark_u + 1 when u's as well, mark_u + 2 when not.
     common_.clear();
-    std::set_intersection(nu_.begin(), nu_.end(), nv_.begin(), nv_.end(), std::back_inserter(common_));
+    for (uint32_t f : faces_of_[v])
+      for (int k = 0; k < 3; ++k) {
+        const uint32_t w = tris_[3 * f + k];
+        if (w == v || mark_[w] > mark_u) continue;
+        ++count_v;
+        if (mark_[w] == mark_u) {
+          mark_[w] = mark_u + 1;
+          common_.push_back(w);
+        } else {
+          mark_[w] = mark_u + 2;
+        }
+      }
     if (common_.size() != (rim_edge ? 1u : 2u)) return false;
     // Valences stay at least 3 (no tetrahedron collapses into a sheet, no
     // rim vertex is left with a single triangle).
-    if (nu_.size() + nv_.size() - 2 - common_.size() < 3) return false;
-    for (uint32_t w : common_) {
-      neighbours(w, nw_);
-      if (nw_.size() < 4) return false;
-    }
+    if (count_u + count_v - 2 - common_.size() < 3) return false;
+    for (uint32_t w : common_)
+      if (distinct_neighbours(w) < 4) return false;
     // Moved triangles must not turn over (more than 60 degrees) or become needles.
     for (uint32_t x : {u, v})
       for (uint32_t f : faces_of_[x]) {
@@ -283,7 +317,9 @@ class Simplifier {
   std::vector<Quadric> q_;
   uint32_t faces_ = 0;
   std::priority_queue<Candidate, std::vector<Candidate>, std::greater<Candidate>> heap_;
-  std::vector<uint32_t> nu_, nv_, nw_, common_;
+  std::vector<uint32_t> nu_, common_;
+  std::vector<uint32_t> mark_;  // per vertex, see next_mark()
+  uint32_t mark_top_ = 0;
 };
 
 }  // namespace

@@ -6,6 +6,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "dbss/encoder/point_index.h"
@@ -61,6 +62,14 @@ struct OutlierStats {
 // must be built on `points`.  Never returns fewer than 4 points unless given
 // fewer: if the tests would leave fewer, nothing is dropped.
 PointCloud remove_outliers(const PointIndex& index, const OutlierOptions& options = {}, OutlierStats* stats = nullptr);
+
+// The same, the kept points written to `out`.  Returns an index built on
+// `out` when the tests built one on the way (the clusters' test needs one
+// over the points left after the isolated ones), null otherwise (nothing
+// dropped, or the last test dropped more): the caller builds one only then.
+// The index refers to `out`, which must stay where it is while it is used.
+std::unique_ptr<PointIndex> remove_outliers(const PointIndex& index, const OutlierOptions& options, OutlierStats* stats,
+                                            PointCloud& out);
 
 // Connected clusters of the points: two points are in one cluster when a
 // chain of points, each within `radius` of the next, joins them.  Returns a

@@ -28,12 +28,15 @@ struct ScanCheck {
   uint32_t boundary_loops = 0;
   double clamped_share = 0;       // of the finest level's displacements, 0..1
   double uncovered_share = 0;     // of the finest level's surface area, farther than a few spacings from any point, 0..1
-  double points_to_surface = 0;   // mean, model units, at the finest level
+  double points_to_surface = 0;   // mean, model units, at the finest level (of at most 2^18 points: see check_scan)
   std::vector<ScanWarning> warnings;
 };
 
 // Checks `e` (its finest level, or the control mesh with no levels) against
 // the points `index` was built on (the points the encoder used).
-ScanCheck check_scan(const Encoding& e, const PointIndex& index);
+// points_to_surface is the mean over every point up to 2^18 of them, over
+// 2^18 evenly spaced in the input's order above that.  `threads` share
+// the distances; the figures are the same on any number.
+ScanCheck check_scan(const Encoding& e, const PointIndex& index, unsigned threads = 1);
 
 }  // namespace dbss
