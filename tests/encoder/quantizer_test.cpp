@@ -60,8 +60,9 @@ std::vector<std::vector<double>> check_quantization(const EncodedLevels& enc, co
     const double step = level.step;
     const size_t evens = enc.positions[l - 1].size() / 3;
     // Up to the points' density plain rounding; past it (more odd vertices
-    // than points) a dead zone of 1.5 steps around 0.
-    const double dead_zone = odd.size() > index.points().size() ? 1.5 : 0.5;
+    // than points) a dead zone of 1.5 steps around 0; once the coarser
+    // level has more vertices than points, only zeros.
+    const double dead_zone = evens > index.points().size() ? HUGE_VAL : odd.size() > index.points().size() ? 1.5 : 0.5;
     samples.emplace_back();
     size_t wrong = 0, off = 0;
     for (size_t e = 0; e < odd.size(); ++e) {
@@ -178,6 +179,8 @@ TEST_CASE("quantizer past the points' density: a dead zone of 1.5 steps, so no l
   CHECK(quantize(0.6, 1.0f).q == 1);
   CHECK(dead_zone_steps(1001, 1000) == 1.5);
   CHECK(dead_zone_steps(1000, 1000) == 0.5);
+  CHECK(dead_zone_steps(4000, 1000, 1000) == 1.5);
+  CHECK(std::isinf(dead_zone_steps(4000, 1000, 1001)));  // the coarser level alone is denser than the points
   // An icosahedron under 600 points of its sphere: levels 1-3 have 30, 120
   // and 480 odd vertices (plain rounding), level 4 has 1920 (dead zone).
   const TriangleMesh control = test::icosahedron();
