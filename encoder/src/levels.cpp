@@ -100,7 +100,9 @@ Result<EncodedLevels> encode_levels(const TriangleMesh& control, const LevelSamp
       if (std::isinf(dead_zone)) return int32_t{0};                 // nothing this level could store
       const double len = std::sqrt(std::pow(a[0] - b[0], 2.0) + std::pow(a[1] - b[1], 2.0) + std::pow(a[2] - b[2], 2.0));
       const Sample s = sampler.sample(e, p, n, 0.5 * len);
-      const Quantized q = quantize(s.distance, step, dead_zone);
+      // A displacement within kSpreadDeadZone standard errors of the fit is
+      // not told apart from the fit's own error (noise): stored as 0.
+      const Quantized q = quantize(s.distance, step, std::max(dead_zone, kSpreadDeadZone * s.spread / step));
       source[e] = static_cast<uint8_t>(s.source);
       fitted[e] = s.fitted;
       // The format's range caps q too; counted with the sampler's clamps.

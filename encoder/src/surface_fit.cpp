@@ -59,6 +59,7 @@ constexpr double kQuietScatter = 0.02;
 
 struct Fitted {
   double height = 0, residual = 0;
+  double spread = 0;  // the standard error of height: residual * sqrt(sum w^2) / sum w
 };
 
 // The weighted fit with `kernel`, then two rounds of robust reweighting.
@@ -86,10 +87,11 @@ bool fit_weighted(FitScratch& s, bool quadric, Kernel kernel, double radius, Fit
     if (!solve(s, quadric, next)) break;
     c = next;
   }
-  double sw = 0, swr = 0;
-  for (size_t i = 0; i < used; ++i) sw += s.w[i], swr += s.w[i] * std::pow(residual(s, i, c), 2.0);
+  double sw = 0, sww = 0, swr = 0;
+  for (size_t i = 0; i < used; ++i) sw += s.w[i], sww += s.w[i] * s.w[i], swr += s.w[i] * std::pow(residual(s, i, c), 2.0);
   out.height = c[0];
   out.residual = sw > 0 ? std::sqrt(swr / sw) : 0;
+  out.spread = sw > 0 ? out.residual * std::sqrt(sww) / sw : 0;
   return std::isfinite(out.height);
 }
 
@@ -132,7 +134,7 @@ SurfaceFit fit_height(const PointIndex& index, const double p[3], const double n
   const bool quadric = used >= 12;
   Fitted narrow;
   if (!fit_weighted(s, quadric, Kernel::narrow, radius, narrow)) return out;
-  double height = narrow.height, spread = narrow.residual;
+  double height = narrow.height, spread = narrow.residual, error = narrow.spread;
   // Points scattered about the narrow fit by more than kQuietScatter of the
   // radius are noise, not shape: the wide kernel averages more of them.
   // Between the two thresholds the heights are blended, so neighbouring
@@ -143,6 +145,7 @@ SurfaceFit fit_height(const PointIndex& index, const double p[3], const double n
     if (fit_weighted(s, quadric, Kernel::wide, radius, wide)) {
       height = (1 - blend) * narrow.height + blend * wide.height;
       spread = (1 - blend) * narrow.residual + blend * wide.residual;
+      error = (1 - blend) * narrow.spread + blend * wide.spread;
     }
   }
   // An ill-posed quadric (points along a line) can put its value at the
@@ -151,6 +154,7 @@ SurfaceFit fit_height(const PointIndex& index, const double p[3], const double n
   out.ok = true;
   out.height = height;
   out.residual = spread;
+  out.spread = error;
   out.points = static_cast<uint32_t>(used);
   return out;
 }

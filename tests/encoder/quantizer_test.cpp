@@ -60,15 +60,17 @@ std::vector<std::vector<double>> check_quantization(const EncodedLevels& enc, co
     const double step = level.step;
     const size_t evens = enc.positions[l - 1].size() / 3;
     // Up to the points' density plain rounding; past it (more odd vertices
-    // than points) a dead zone of 1.5 steps around 0; once the coarser
-    // level has more vertices than points, only zeros.
-    const double dead_zone = evens > index.points().size() ? HUGE_VAL : odd.size() > index.points().size() ? 1.5 : 0.5;
+    // than points) a dead zone of kDeadZoneSteps around 0; once the coarser
+    // level has more vertices than points, only zeros.  A sample within
+    // kSpreadDeadZone of its fit's standard errors is 0 too.
+    const double past = evens > index.points().size() ? HUGE_VAL : odd.size() > index.points().size() ? kDeadZoneSteps : 0.5;
     samples.emplace_back();
     size_t wrong = 0, off = 0;
     for (size_t e = 0; e < odd.size(); ++e) {
       const OddVertex& o = odd[e];
       const Sample s = sample_displacement(index, o.point, o.normal, o.half_edge_length, o.half_edge_length);
       samples.back().push_back(s.distance);
+      const double dead_zone = std::max(past, kSpreadDeadZone * s.spread / step);
       const double limit = format::kMaxAbsDisplacement;
       const int32_t expect = std::abs(s.distance) < dead_zone * step
                                  ? 0
@@ -172,17 +174,18 @@ TEST_CASE("quantizer and sampler on a sphere: samples match the exact distance a
   CHECK(worst_vertex <= 0.5 * step + worst_sample + 1e-6 * R);
 }
 
-TEST_CASE("quantizer past the points' density: a dead zone of 1.5 steps, so no level there stores +-1") {
+TEST_CASE("quantizer past the points' density: a dead zone, then only zeros once the coarser level outnumbers the points") {
   CHECK(quantize(1.49, 1.0f, 1.5).q == 0);
   CHECK(quantize(-1.49, 1.0f, 1.5).q == 0);
   CHECK(quantize(1.5, 1.0f, 1.5).q == 2);
   CHECK(quantize(0.6, 1.0f).q == 1);
-  CHECK(dead_zone_steps(1001, 1000) == 1.5);
+  CHECK(dead_zone_steps(1001, 1000) == kDeadZoneSteps);
   CHECK(dead_zone_steps(1000, 1000) == 0.5);
-  CHECK(dead_zone_steps(4000, 1000, 1000) == 1.5);
+  CHECK(dead_zone_steps(4000, 1000, 1000) == kDeadZoneSteps);
   CHECK(std::isinf(dead_zone_steps(4000, 1000, 1001)));  // the coarser level alone is denser than the points
   // An icosahedron under 600 points of its sphere: levels 1-3 have 30, 120
-  // and 480 odd vertices (plain rounding), level 4 has 1920 (dead zone).
+  // and 480 odd vertices (plain rounding), level 4 has 1920 and refines a
+  // level of 642 vertices (only zeros).
   const TriangleMesh control = test::icosahedron();
   const double R = std::sqrt(double{control.positions[0]} * control.positions[0] + double{control.positions[1]} * control.positions[1]);
   const PointCloud pc = fibonacci_sphere(R, 600);

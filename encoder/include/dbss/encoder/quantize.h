@@ -26,8 +26,19 @@ struct Quantized {
 // samples re-express the fitted surface between points, and their small
 // values are the fit's wobble, not the shape.  Measured on four sampled
 // shapes (30k points): levels past the density cost 1.5-2.2x fewer bytes
-// for 1-5% more error against the true surface.
-inline constexpr double kDeadZoneSteps = 1.5;
+// for 1-5% more error against the true surface.  It was 1.5 until the
+// levels after this one stored nothing (dead_zone_steps): their plain
+// butterfly refinement then carries this level's rounding errors into a
+// wavier limit surface, and with 1.5 steps a torus of 3,000 points came out
+// 2.4% farther from the truth at level 5 than at level 4 (1.8% with 1.0);
+// on the eight (30k points) 1.0 costs 16% more bytes at that level for 2%
+// less error (bench/floor_probe).
+inline constexpr double kDeadZoneSteps = 1.0;
+
+// A displacement within this many of its fit's standard errors
+// (Sample::spread) is stored as 0 at any level: what the points cannot tell
+// from their noise.
+inline constexpr double kSpreadDeadZone = 2.0;
 
 // The dead zone, in steps, of a level with `samples` displacements refining
 // a level of `coarser` vertices, from `points` points: plain rounding (0.5)

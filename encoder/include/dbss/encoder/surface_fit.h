@@ -25,6 +25,7 @@ struct SurfaceFit {
   double height = 0;    // where the line meets the fitted surface, along n from p
   double residual = 0;  // weighted RMS distance of the points from the fit: their noise (model units)
   uint32_t points = 0;  // points the fit used
+  double spread = 0;    // standard error of `height` from the points' scatter (model units): how far the fit itself may be off
 };
 
 // p: the odd vertex; n: its unit normal; t0: a first estimate of the
