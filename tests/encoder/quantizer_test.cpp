@@ -183,28 +183,33 @@ TEST_CASE("quantizer past the points' density: a dead zone, then only zeros once
   CHECK(dead_zone_steps(1000, 1000) == 0.5);
   CHECK(dead_zone_steps(4000, 1000, 1000) == kDeadZoneSteps);
   CHECK(std::isinf(dead_zone_steps(4000, 1000, 1001)));  // the coarser level alone is denser than the points
-  // An icosahedron under 600 points of its sphere: levels 1-3 have 30, 120
-  // and 480 odd vertices (plain rounding), level 4 has 1920 and refines a
-  // level of 642 vertices (only zeros).
+  // An icosahedron under 1000 points of its sphere: levels 1-3 have 30, 120
+  // and 480 odd vertices (plain rounding), level 4 has 1920 (past the
+  // points: the dead zone) and refines 642 vertices; a level 5 would refine
+  // 2562, more than the points, and store only zeros.
   const TriangleMesh control = test::icosahedron();
   const double R = std::sqrt(double{control.positions[0]} * control.positions[0] + double{control.positions[1]} * control.positions[1]);
-  const PointCloud pc = fibonacci_sphere(R, 600);
+  const PointCloud pc = fibonacci_sphere(R, 1000);
   const PointIndex index(pc);
   LevelEncodeOptions o;
-  o.levels = 4;
+  o.levels = 5;
   o.step = quantization_step(1e-4, 2 * R * std::sqrt(3.0));
   auto enc = encode_levels(control, index, o);
   REQUIRE(enc.ok());
   const auto samples = check_quantization(enc.value(), index);  // each level's rule, q by q
-  size_t ones_before = 0, ones_past = 0, rounded_past = 0;
-  for (size_t l = 0; l < 4; ++l)
-    for (int32_t q : enc.value().levels[l].q) (l < 3 ? ones_before : ones_past) += std::abs(q) == 1;
+  size_t ones_before = 0, ones_past = 0, plain_ones_past = 0, nonzero_last = 0;
+  for (size_t l = 0; l < 3; ++l)
+    for (int32_t q : enc.value().levels[l].q) ones_before += std::abs(q) == 1;
+  for (int32_t q : enc.value().levels[3].q) ones_past += std::abs(q) == 1;
+  for (int32_t q : enc.value().levels[4].q) nonzero_last += q != 0;
   // Level-4 samples plain rounding would have stored as +-1.
-  for (double d : samples[3]) rounded_past += std::abs(d) >= 0.5 * o.step && std::abs(d) < 1.5 * o.step;
-  INFO("+-1 before the density " << ones_before << ", past it " << ones_past << ", +-1 by plain rounding past it " << rounded_past);
+  for (double d : samples[3]) plain_ones_past += std::abs(d) >= 0.5 * o.step && std::abs(d) < 1.5 * o.step;
+  INFO("+-1 before the density " << ones_before << ", past it " << ones_past << ", by plain rounding past it "
+                                 << plain_ones_past << "; nonzero at level 5 " << nonzero_last);
   CHECK(ones_before > 0);
-  CHECK(rounded_past > 0);  // the dead zone has something to do at level 4
-  CHECK(ones_past == 0);
+  CHECK(plain_ones_past > 0);
+  CHECK(ones_past < plain_ones_past);  // the dead zone zeroed some of them
+  CHECK(nonzero_last == 0);
 }
 
 TEST_CASE("sampler on a thin slab: the sheet nearer the vertex wins") {
