@@ -81,7 +81,9 @@ m triangle-distance-corner-region encoder/src/triangle_tree.cpp \
   'if (d3 >= 0 && d4 <= d3) return dist2(p, b);' 'if (d3 >= 0 && d4 >= d3) return dist2(p, b);'
 # Issue 15's sampler and quantizer, issue 14's io library.
 m dead-zone-off encoder/include/dbss/encoder/quantize.h \
-  'inline constexpr double kDeadZoneSteps = 1.5;' 'inline constexpr double kDeadZoneSteps = 0.5;'
+  'inline constexpr double kDeadZoneSteps = 1.0;' 'inline constexpr double kDeadZoneSteps = 0.5;'
+m zero-levels-coded encoder/include/dbss/encoder/quantize.h \
+  'if (coarser > points) return HUGE_VAL;' 'if (false && coarser > points) return HUGE_VAL;'
 m fit-ignored encoder/src/sampling.cpp 'if (f.ok && (std::abs(f.height)' 'if (false && f.ok && (std::abs(f.height)'
 m fit-not-robust encoder/src/surface_fit.cpp 'for (int round = 0; round < 2; ++round)' 'for (int round = 0; round < 0; ++round)'
 m control-bits-one-short encoder/src/control_mesh_codec.cpp 'std::ceil(std::log2(extent / step))' 'std::floor(std::log2(extent / step))'

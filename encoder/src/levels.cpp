@@ -81,7 +81,7 @@ Result<EncodedLevels> encode_levels(const TriangleMesh& control, const PointInde
     return s;
   };
   const size_t point_count = points.points().size();
-  sampler.dead_zone = [point_count](size_t odd) { return dead_zone_steps(odd, point_count); };
+  sampler.dead_zone = [point_count](size_t odd, size_t even) { return dead_zone_steps(odd, point_count, even); };
   return encode_levels(control, sampler, o);
 }
 
@@ -101,7 +101,7 @@ Result<EncodedLevels> encode_levels(const TriangleMesh& control, const LevelSamp
     if (sampler.begin_level) sampler.begin_level(l, r.positions(), r.triangles());
     // Per odd vertex, written by whichever thread samples it, summed after.
     const size_t odd = static_cast<size_t>(r.next_odd_count());
-    const double dead_zone = sampler.dead_zone ? sampler.dead_zone(odd) : 0.5;
+    const double dead_zone = sampler.dead_zone ? sampler.dead_zone(odd, r.positions().size() / 3) : 0.5;
     std::vector<uint8_t> source(odd, 0xFF), clamped(odd, 0), fitted(odd, 0);
     std::vector<double> magnitude(odd, 0.0);
     // The decoder's own step: it computes each odd vertex's undisplaced
@@ -110,9 +110,12 @@ Result<EncodedLevels> encode_levels(const TriangleMesh& control, const LevelSamp
     // what a decoder computes).
     const OddChooser choose = [&](uint32_t e, const double p[3], const double n[3], const float* a, const float* b) {
       if (n[0] == 0 && n[1] == 0 && n[2] == 0) return int32_t{0};  // degenerate: the decoder will not move it
+      if (std::isinf(dead_zone)) return int32_t{0};                 // nothing this level could store
       const double len = std::sqrt(std::pow(a[0] - b[0], 2.0) + std::pow(a[1] - b[1], 2.0) + std::pow(a[2] - b[2], 2.0));
       const Sample s = sampler.sample(e, p, n, 0.5 * len);
-      const Quantized q = quantize(s.distance, step, dead_zone);
+      // A displacement within kSpreadDeadZone standard errors of the fit is
+      // not told apart from the fit's own error (noise): stored as 0.
+      const Quantized q = quantize(s.distance, step, std::max(dead_zone, kSpreadDeadZone * s.spread / step));
       source[e] = static_cast<uint8_t>(s.source);
       fitted[e] = s.fitted;
       // The format's range caps q too; counted with the sampler's clamps.

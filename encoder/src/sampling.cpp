@@ -76,7 +76,8 @@ Sample sample_displacement(const PointIndex& index, const double pd[3], const do
     // reaches past the cylinder on a sparse scan) is not trusted over it.
     if (fit) {
       const SurfaceFit f = fit_height(index, pd, nd, d, kFitPoints, scratch.fit, sides);
-      if (f.ok && (std::abs(f.height) <= half_length || std::abs(d) > half_length)) d = f.height, out.fitted = true;
+      if (f.ok && (std::abs(f.height) <= half_length || std::abs(d) > half_length))
+        d = f.height, out.fitted = true, out.spread = f.spread;
     }
     out.clamped = std::abs(d) > half_length;
     out.distance = std::clamp(d, -half_length, half_length);

@@ -60,14 +60,17 @@ std::vector<std::vector<double>> check_quantization(const EncodedLevels& enc, co
     const double step = level.step;
     const size_t evens = enc.positions[l - 1].size() / 3;
     // Up to the points' density plain rounding; past it (more odd vertices
-    // than points) a dead zone of 1.5 steps around 0.
-    const double dead_zone = odd.size() > index.points().size() ? 1.5 : 0.5;
+    // than points) a dead zone of kDeadZoneSteps around 0; once the coarser
+    // level has more vertices than points, only zeros.  A sample within
+    // kSpreadDeadZone of its fit's standard errors is 0 too.
+    const double past = evens > index.points().size() ? HUGE_VAL : odd.size() > index.points().size() ? kDeadZoneSteps : 0.5;
     samples.emplace_back();
     size_t wrong = 0, off = 0;
     for (size_t e = 0; e < odd.size(); ++e) {
       const OddVertex& o = odd[e];
       const Sample s = sample_displacement(index, o.point, o.normal, o.half_edge_length, o.half_edge_length);
       samples.back().push_back(s.distance);
+      const double dead_zone = std::max(past, kSpreadDeadZone * s.spread / step);
       const double limit = format::kMaxAbsDisplacement;
       const int32_t expect = std::abs(s.distance) < dead_zone * step
                                  ? 0
@@ -171,34 +174,42 @@ TEST_CASE("quantizer and sampler on a sphere: samples match the exact distance a
   CHECK(worst_vertex <= 0.5 * step + worst_sample + 1e-6 * R);
 }
 
-TEST_CASE("quantizer past the points' density: a dead zone of 1.5 steps, so no level there stores +-1") {
+TEST_CASE("quantizer past the points' density: a dead zone, then only zeros once the coarser level outnumbers the points") {
   CHECK(quantize(1.49, 1.0f, 1.5).q == 0);
   CHECK(quantize(-1.49, 1.0f, 1.5).q == 0);
   CHECK(quantize(1.5, 1.0f, 1.5).q == 2);
   CHECK(quantize(0.6, 1.0f).q == 1);
-  CHECK(dead_zone_steps(1001, 1000) == 1.5);
+  CHECK(dead_zone_steps(1001, 1000) == kDeadZoneSteps);
   CHECK(dead_zone_steps(1000, 1000) == 0.5);
-  // An icosahedron under 600 points of its sphere: levels 1-3 have 30, 120
-  // and 480 odd vertices (plain rounding), level 4 has 1920 (dead zone).
+  CHECK(dead_zone_steps(4000, 1000, 1000) == kDeadZoneSteps);
+  CHECK(std::isinf(dead_zone_steps(4000, 1000, 1001)));  // the coarser level alone is denser than the points
+  // An icosahedron under 1000 points of its sphere: levels 1-3 have 30, 120
+  // and 480 odd vertices (plain rounding), level 4 has 1920 (past the
+  // points: the dead zone) and refines 642 vertices; a level 5 would refine
+  // 2562, more than the points, and store only zeros.
   const TriangleMesh control = test::icosahedron();
   const double R = std::sqrt(double{control.positions[0]} * control.positions[0] + double{control.positions[1]} * control.positions[1]);
-  const PointCloud pc = fibonacci_sphere(R, 600);
+  const PointCloud pc = fibonacci_sphere(R, 1000);
   const PointIndex index(pc);
   LevelEncodeOptions o;
-  o.levels = 4;
+  o.levels = 5;
   o.step = quantization_step(1e-4, 2 * R * std::sqrt(3.0));
   auto enc = encode_levels(control, index, o);
   REQUIRE(enc.ok());
   const auto samples = check_quantization(enc.value(), index);  // each level's rule, q by q
-  size_t ones_before = 0, ones_past = 0, rounded_past = 0;
-  for (size_t l = 0; l < 4; ++l)
-    for (int32_t q : enc.value().levels[l].q) (l < 3 ? ones_before : ones_past) += std::abs(q) == 1;
+  size_t ones_before = 0, ones_past = 0, plain_ones_past = 0, nonzero_last = 0;
+  for (size_t l = 0; l < 3; ++l)
+    for (int32_t q : enc.value().levels[l].q) ones_before += std::abs(q) == 1;
+  for (int32_t q : enc.value().levels[3].q) ones_past += std::abs(q) == 1;
+  for (int32_t q : enc.value().levels[4].q) nonzero_last += q != 0;
   // Level-4 samples plain rounding would have stored as +-1.
-  for (double d : samples[3]) rounded_past += std::abs(d) >= 0.5 * o.step && std::abs(d) < 1.5 * o.step;
-  INFO("+-1 before the density " << ones_before << ", past it " << ones_past << ", +-1 by plain rounding past it " << rounded_past);
+  for (double d : samples[3]) plain_ones_past += std::abs(d) >= 0.5 * o.step && std::abs(d) < 1.5 * o.step;
+  INFO("+-1 before the density " << ones_before << ", past it " << ones_past << ", by plain rounding past it "
+                                 << plain_ones_past << "; nonzero at level 5 " << nonzero_last);
   CHECK(ones_before > 0);
-  CHECK(rounded_past > 0);  // the dead zone has something to do at level 4
-  CHECK(ones_past == 0);
+  CHECK(plain_ones_past > 0);
+  CHECK(ones_past < plain_ones_past);  // the dead zone zeroed some of them
+  CHECK(nonzero_last == 0);
 }
 
 TEST_CASE("sampler on a thin slab: the sheet nearer the vertex wins") {

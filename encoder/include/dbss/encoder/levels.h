@@ -69,9 +69,10 @@ struct LevelSampler {
   // vertex `p` to the surface, clamped to half_length (half its edge's
   // length).  Called from several threads at once.
   std::function<Sample(uint32_t odd, const double p[3], const double n[3], double half_length)> sample;
-  // The quantizer's dead zone in steps for a level of `odd` samples; empty:
-  // plain rounding (0.5).
-  std::function<double(size_t odd)> dead_zone;
+  // The quantizer's dead zone in steps for a level of `odd` samples refining
+  // a level of `even` vertices; empty: plain rounding (0.5).  Infinite: the
+  // level stores only zeros and its vertices are not sampled.
+  std::function<double(size_t odd, size_t even)> dead_zone;
 };
 
 // `control` must be the Draco-decoded control mesh.  Displacements from

@@ -21,6 +21,7 @@ struct Sample {
   SampleSource source = SampleSource::nearest;  // what found the sheet the line meets
   bool fitted = false;   // distance is to the local surface fit (surface_fit.h) there
   bool clamped = false;  // |distance| was cut to the limit
+  double spread = 0;     // the fit's standard error at the line when fitted (SurfaceFit::spread), else 0
 };
 
 // Points in the local surface fit around the line's first hit: enough to

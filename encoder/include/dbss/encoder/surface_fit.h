@@ -37,8 +37,9 @@ struct PointSides {
 struct SurfaceFit {
   bool ok = false;
   double height = 0;    // where the line meets the fitted surface, along n from p
-  double residual = 0;  // weighted RMS distance of the points from the fit: their noise
+  double residual = 0;  // weighted RMS distance of the points from the fit: their noise (model units)
   uint32_t points = 0;  // points the fit used
+  double spread = 0;    // standard error of `height` from the points' scatter (model units): how far the fit itself may be off
 };
 
 // p: the odd vertex; n: its unit normal; t0: a first estimate of the
@@ -46,11 +47,15 @@ struct SurfaceFit {
 // part).  The `k` points nearest the foot p + t0 n, less those farther from
 // the estimate along n than half the neighbourhood's radius (another sheet),
 // are fitted by a quadric height field over the plane normal to n (a plane
-// with fewer than 12 points), weighted by a Gaussian of their distance from
-// the line; the neighbourhood follows the local point spacing, whatever the
-// level's edge length.  Two more rounds reweight each point by its residual
-// (Tukey's biweight), so a stray point left among the surface's points does
-// not pull the fit.  Not ok with fewer than 4 points or an ill-posed fit.
+// with fewer than 12 points), weighted by their distance from the line: a
+// kernel that vanishes at the neighbourhood's radius, so the fit follows the
+// points closely and moves continuously from one line to the next; where
+// the points scatter about that fit like noise (RMS over 2% of the radius),
+// blended into a wider Gaussian that averages more of them.  The
+// neighbourhood follows the local point spacing, whatever the level's edge
+// length.  Two more rounds reweight each point by its residual (Tukey's
+// biweight), so a stray point left among the surface's points does not pull
+// the fit.  Not ok with fewer than 4 points or an ill-posed fit.
 // `sides` (may be null): only the points whose normal agrees with n.
 SurfaceFit fit_height(const PointIndex& points, const double p[3], const double n[3], double t0, size_t k,
                       FitScratch& scratch, const PointSides* sides = nullptr);
