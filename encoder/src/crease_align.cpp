@@ -293,6 +293,9 @@ void align_to_features(TriangleMesh& m, const PointIndex& points, const CreaseOp
   for (uint32_t v = 0; v < n; ++v)
     if (feature[v].planes) {
       move[v] = std::sqrt(dot(sub(feature[v].target, pos(m, v)), sub(feature[v].target, pos(m, v))));
+      // A vertex with a null edge has no scale to judge its move by (and
+      // move / 0 would put a NaN in the sort's comparisons): left alone.
+      if (!(shortest[v] > 0)) continue;
       if (move[v] <= (feature[v].planes == 3 ? kCornerReach : kLineReach) * mean_edge[v] / edges[v]) order.push_back(v);
     }
   std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {

@@ -207,9 +207,9 @@ struct Levl {
 };
 
 Levl read_levl(std::span<const uint8_t> d, uint32_t level, uint64_t edges, uint16_t minor) {
-  if (d.size() < 16) fail("bad_structure");  // too short for its fields
+  if (d.size() < 16) fail("bad_field");  // too short for its fields (section 9, check 1)
   const uint8_t* p = d.data();
-  if (p[0] != level) fail("bad_field");
+  if (p[0] != level) fail("bad_structure");  // out of order (check 2)
   const uint8_t coding = p[1];
   if (coding > (minor >= 2 ? 2 : 1)) fail("bad_field");  // coding 2: version 1.2
   if (u16(p + 2) != 0) fail("bad_field");

@@ -131,9 +131,6 @@ const Known kKnown[] = {
     // the reference applies rule 2 first, the project its limit. Section 12
     // does not order the (advisory) limits against the rules of section 7.
     {"bad_structure", "limit_exceeded", "file_size: INDX rule 2 vs the file size limit"},
-    // LEVL `level` not its position among the LEVL chunks: section 9 gives
-    // no code; the reference reads it as a field (bad_field).
-    {"bad_field", "bad_structure", "LEVL level field"},
     // The zstd frame declares a content size other than raw_size: section 9
     // says `compression`; the project reports bad_field.
     {"compression", "bad_field", "zstd content size vs raw_size"},
