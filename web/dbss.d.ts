@@ -19,6 +19,8 @@ export class DbssError extends Error {
 
 /** Loads the module: build-web/node/ in node, build-web/dist/ (or `url`) in a browser or worker. */
 export function loadModule(url?: string): Promise<DbssModule>;
+/** Whether this engine has WebAssembly SIMD, which the default build needs (loadModule() without a URL throws a clear Error when not). */
+export function simdSupported(): boolean;
 
 export interface LevelView {
   level: number;

@@ -41,8 +41,29 @@ export async function loadModule(url) {
     const factory = createRequire(import.meta.url)(new URL(file).pathname);
     return factory();
   }
+  // The default build uses WebAssembly SIMD (Chrome 91, Firefox 89, Safari
+  // 16.4 and later); without it the module would fail to compile with an
+  // engine message that names nothing.  Say what is missing instead.
+  if (url === undefined && !simdSupported())
+    throw new Error('dbss: this browser has no WebAssembly SIMD, which the default build needs; '
+      + 'serve a build made with DBSS_WASM_SIMD=0 bash scripts/web-build.sh and pass its URL to loadModule()');
   const { default: factory } = await import(url ?? new URL('../build-web/dist/dbss_wasm.mjs', import.meta.url).href);
   return factory();
+}
+
+// A module whose one function returns a v128 constant: valid only where
+// the engine has SIMD.
+const SIMD_PROBE = new Uint8Array([
+  0x00, 0x61, 0x73, 0x6d, 0x01, 0x00, 0x00, 0x00,  // magic, version 1
+  0x01, 0x05, 0x01, 0x60, 0x00, 0x01, 0x7b,        // types: () -> v128
+  0x03, 0x02, 0x01, 0x00,                          // functions: one of type 0
+  0x0a, 0x16, 0x01, 0x14, 0x00, 0xfd, 0x0c,        // code: no locals, v128.const
+  0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0,  // its 16 bytes
+  0x0b,                                            // end
+]);
+
+export function simdSupported() {
+  return typeof WebAssembly === 'object' && WebAssembly.validate(SIMD_PROBE);
 }
 
 const FOURCC = (v) => String.fromCharCode(v & 0xff, (v >>> 8) & 0xff, (v >>> 16) & 0xff, v >>> 24);

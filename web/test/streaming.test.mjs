@@ -8,13 +8,19 @@ import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
 import { fileURLToPath } from 'node:url';
-import { loadModule, StreamingDecoder, DbssError } from '../dbss.mjs';
+import { loadModule, StreamingDecoder, DbssError, simdSupported } from '../dbss.mjs';
 import { fnv1a64 } from '../hash.mjs';
 
 const repo = fileURLToPath(new URL('../..', import.meta.url));
 const golden = (name) => new Uint8Array(readFileSync(`${repo}/tests/golden/v1/${name}.dbss`));
 const recorded = (name) => readFileSync(`${repo}/tests/golden/v1/${name}.hashes`, 'utf8').trim().split('\n');
 const module = await loadModule();
+
+test('the SIMD probe validates where the SIMD build runs (node 20 runs it)', () => {
+  // loadModule() in a browser refuses the default build with a clear
+  // message when this is false; a wrong probe would refuse every browser.
+  assert.equal(simdSupported(), true);
+});
 
 function levelHashes(d) {
   const out = [];
