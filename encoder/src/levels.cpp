@@ -70,7 +70,7 @@ Result<EncodedLevels> encode_levels(const TriangleMesh& control, const PointInde
   auto normals = std::make_shared<std::vector<float>>();
   PointSides sides;
   if (!o.creases.empty()) {
-    *normals = estimate_point_normals(points);
+    *normals = estimate_point_normals(points, std::max(1u, o.threads));
     sides = {normals.get(), std::cos(30 * 3.14159265358979323846 / 180)};
   }
   LevelSampler sampler;

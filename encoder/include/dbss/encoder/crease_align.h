@@ -44,10 +44,11 @@ void align_to_features(TriangleMesh& mesh, const PointIndex& points, const Creas
                        AlignStats* stats = nullptr, std::vector<std::array<uint32_t, 2>>* chains = nullptr,
                        std::vector<uint32_t>* corners = nullptr);
 
-// A unit normal per point (3 floats each, sign arbitrary): the least-squares
-// plane of its 12 nearest points.  Next to a feature the normal blends the
-// two sides within about a point spacing of the line.  For one-sided
-// sampling (surface_fit.h's PointSides).
-std::vector<float> estimate_point_normals(const PointIndex& points);
+// A unit normal per point (3 floats each, sign arbitrary): the plane most of
+// its 12 nearest points lie on, not their least-squares blend, so a point
+// next to a feature takes its own side's normal.  For one-sided sampling
+// (surface_fit.h's PointSides).  Split over `threads` (a piece per ten
+// thousand points at most); the same floats on any number of them.
+std::vector<float> estimate_point_normals(const PointIndex& points, unsigned threads = 1);
 
 }  // namespace dbss
