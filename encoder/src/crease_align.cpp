@@ -1,10 +1,9 @@
 #include "dbss/encoder/crease_align.h"
+#include "split_ranges.h"
 
 #include <Eigen/Dense>
 
 #include <algorithm>
-#include <future>
-#include <system_error>
 #include <cmath>
 #include <unordered_map>
 #include <vector>
@@ -239,25 +238,13 @@ int shared_planes(const Feature& a, const Feature& b, double tolerance, int* whi
 std::vector<float> estimate_point_normals(const PointIndex& points, unsigned threads) {
   const size_t n = points.points().size();
   std::vector<float> out(3 * n);
-  // Per point and independent: each piece writes only its own points, so
-  // the result is the same on any number of threads.
-  const auto body = [&](size_t from, size_t to) {
+  // Per point and independent: each piece writes only its own points.
+  detail::split_ranges(n, threads, [&](size_t from, size_t to) {
     for (size_t i = from; i < to; ++i) {
       const V3 nn = robust_normal(points, static_cast<uint32_t>(i));
       for (int a = 0; a < 3; ++a) out[3 * i + a] = static_cast<float>(nn[a]);
     }
-  };
-  const unsigned pieces = std::max(1u, std::min<unsigned>(threads, static_cast<unsigned>(n / 10000 + 1)));
-  std::vector<std::future<void>> helpers;
-  for (unsigned t = 1; t < pieces; ++t) {
-    try {
-      helpers.push_back(std::async(std::launch::async, body, n * t / pieces, n * (t + 1) / pieces));
-    } catch (const std::system_error&) {
-      body(n * t / pieces, n * (t + 1) / pieces);  // no thread to be had: here, then
-    }
-  }
-  body(size_t{0}, n / pieces);
-  for (auto& h : helpers) h.get();
+  });
   return out;
 }
 

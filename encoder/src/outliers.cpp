@@ -1,11 +1,10 @@
 #include "dbss/encoder/outliers.h"
+#include "split_ranges.h"
 
 #include <algorithm>
 #include <cmath>
 #include <array>
-#include <future>
 #include <memory>
-#include <system_error>
 #include <numeric>
 
 #include "dbss/encoder/point_distances.h"
@@ -273,19 +272,7 @@ std::unique_ptr<PointIndex> remove_outliers(const PointIndex& index, const Outli
   // Both passes are per point and independent: split over the threads
   // (each writes only its own points, so the result is the same on any
   // number).
-  const auto in_parallel = [&](const auto& body) {
-    const unsigned threads = std::max(1u, std::min<unsigned>(o.threads, static_cast<unsigned>(n / 10000 + 1)));
-    std::vector<std::future<void>> helpers;
-    for (unsigned t = 1; t < threads; ++t) {
-      try {
-        helpers.push_back(std::async(std::launch::async, body, n * t / threads, n * (t + 1) / threads));
-      } catch (const std::system_error&) {
-        body(n * t / threads, n * (t + 1) / threads);  // no thread to be had: here, then
-      }
-    }
-    body(size_t{0}, n / threads);
-    for (auto& h : helpers) h.get();
-  };
+  const auto in_parallel = [&](const auto& body) { detail::split_ranges(n, o.threads, body); };
   in_parallel([&](size_t from, size_t to) {
     std::vector<uint32_t> idx(k + 1);
     std::vector<float> d2(k + 1);

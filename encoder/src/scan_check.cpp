@@ -1,10 +1,9 @@
 #include "dbss/encoder/scan_check.h"
+#include "split_ranges.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <future>
-#include <system_error>
 #include <vector>
 
 #include "dbss/encoder/encode.h"
@@ -55,17 +54,7 @@ double sampled_points_to_mesh(const PointCloud& pc, const TriangleMesh& mesh, un
       d[s] = tree.distance(p);
     }
   };
-  const unsigned parts = std::max(1u, std::min<unsigned>(threads, static_cast<unsigned>(m / 10000 + 1)));
-  std::vector<std::future<void>> helpers;
-  for (unsigned t = 1; t < parts; ++t) {
-    try {
-      helpers.push_back(std::async(std::launch::async, body, m * t / parts, m * (t + 1) / parts));
-    } catch (const std::system_error&) {
-      body(m * t / parts, m * (t + 1) / parts);  // no thread to be had: here, then
-    }
-  }
-  body(0, m / parts);
-  for (auto& h : helpers) h.get();
+  detail::split_ranges(m, threads, body);
   double sum = 0;
   for (double x : d) sum += x;
   return sum / static_cast<double>(m);
