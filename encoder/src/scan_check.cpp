@@ -10,6 +10,7 @@
 #include "dbss/encoder/point_distances.h"
 #include "dbss/encoder/open_surface.h"
 #include "dbss/encoder/outliers.h"
+#include "dbss/encoder/point_rims.h"
 #include "dbss/encoder/shell_mesh.h"
 #include "dbss/encoder/triangle_tree.h"
 
@@ -27,6 +28,8 @@ constexpr double kUncoveredReach = 3;
 constexpr double kMaxUncovered = 0.05;
 // Points' mean distance to the surface, in median spacings.
 constexpr double kMaxDistance = 3;
+// Largest level (in triangles) the capped-rims test runs its inside tests on.
+constexpr size_t kJoinTestTriangles = size_t{1} << 16;
 // Points dropped as outliers before a warning.
 constexpr double kMaxDropped = 0.05;
 
@@ -125,6 +128,24 @@ ScanCheck check_scan(const Encoding& e, const PointIndex& index, unsigned thread
   }
   c.uncovered_share = total > 0 ? bare / total : 0;
   c.points_to_surface = sampled_points_to_mesh(pc, finest, threads);
+  // A closed surface over points that end at two facing rims (a band the
+  // scan missed right round a tube) must join them; capped, a handle is
+  // lost.  The carving can cap such ends before the bridging stage sees
+  // them as holes (and its doubtful pairs count), so the points are asked
+  // directly.  The winding-number test runs on the finest level of at most
+  // kJoinTestTriangles triangles: coarse enough to be quick, and a bridge
+  // is in every level.
+  if (!c.open && info.components > 0) {
+    const std::vector<PointRim> rims = find_point_rims(index);
+    const std::vector<std::pair<size_t, size_t>> pairs = tube_end_pairs(rims);
+    if (!pairs.empty()) {
+      TriangleMesh test = e.control;
+      for (size_t l = 0; l < e.levels.triangles.size(); ++l)
+        if (e.levels.triangles[l].size() / 3 <= kJoinTestTriangles)
+          test = TriangleMesh{e.levels.positions[l], e.levels.triangles[l]};
+      for (const auto& [a, b] : pairs) c.capped_rim_pairs += !surface_joins(test, rims[a], rims[b]);
+    }
+  }
 
   const auto warn = [&](const char* code, const std::string& message) { c.warnings.push_back({code, message}); };
   const uint32_t level = static_cast<uint32_t>(e.levels.stats.size());
@@ -146,11 +167,13 @@ ScanCheck check_scan(const Encoding& e, const PointIndex& index, unsigned thread
                           (c.spacing > 0 ? fmt("%.1f", reach / c.spacing) + " point spacings" : fmt("%.3g", reach) + " model units") + " (bound " + fmt("%.0f%%", 100 * kMaxUncovered) +
                           (e.stages.bridged_area > 0 ? fmt(" plus 1.5 times the %.1f%% bridged over holes", 100 * e.stages.bridged_area) : "") +
                           "): surface invented where nothing was scanned (holes, an open patch closed over, or stray points)");
-  if (e.stages.doubtful_caps > 0)
-    warn("topology", std::to_string(e.stages.doubtful_caps) +
-                         " pair(s) of holes were capped that lie close together and face each other: each pair "
-                         "may be the two ends of a handle or limb where the scan missed a band, and capping them "
-                         "cuts it (the genus may be too low by as much; a scan of the gap, or --surface open "
+  // The bridging stage's doubtful pairs and the points' capped rims are
+  // mostly the same openings seen twice: the larger count stands.
+  if (const size_t capped = std::max<size_t>(e.stages.doubtful_caps, c.capped_rim_pairs); capped > 0)
+    warn("topology", std::to_string(capped) +
+                         " pair(s) of openings in the scan were capped that lie close together and face each other: "
+                         "each pair may be the two ends of a handle or limb where the scan missed a band, and capping "
+                         "them cuts it (the genus may be too low by as much; a scan of the gap, or --surface open "
                          "to keep the ends as boundaries)");
   if (c.spacing > 0 && c.points_to_surface > kMaxDistance * c.spacing)
     warn("distance", "the points lie " + fmt("%.1f", c.points_to_surface / c.spacing) +

@@ -29,6 +29,10 @@ struct ScanCheck {
   double clamped_share = 0;       // of the finest level's displacements, 0..1
   double uncovered_share = 0;     // of the finest level's surface area, farther than a few spacings from any point, 0..1
   double points_to_surface = 0;   // mean, model units, at the finest level (of at most 2^18 points: see check_scan)
+  // Pairs of rims where the points end (point_rims.h) that look like the
+  // two ends of a tube the scan cut through, and that a closed surface caps
+  // instead of joining: each may be a lost handle.
+  uint32_t capped_rim_pairs = 0;
   std::vector<ScanWarning> warnings;
 };
 

@@ -1,0 +1,53 @@
+// Where a scan's points end: the rims of the openings in a point cloud,
+// found from the points alone (not from any surface made of them), and the
+// pairs of rims that look like the two ends of a tube the scan cut through.
+// The self-check uses them to tell whether a closed surface joined those
+// ends or capped them: a capped pair may be a lost handle, which no figure
+// of the surface itself shows (the carving can cap the ends before any
+// hole reaches the bridging stage).
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "dbss/decoder/mesh.h"
+#include "dbss/encoder/point_index.h"
+
+namespace dbss {
+
+struct PointRim {
+  std::array<double, 3> centre{};
+  // Unit normal of the rim's least-squares plane, pointing away from the
+  // opening (into the scanned surface the rim bounds).
+  std::array<double, 3> axis{};
+  double radius = 0;  // mean distance of the rim's points from the centre
+  // Mean |cos| between the points' surface normals along the rim and the
+  // axis: near 0 where the rim cuts across a tube's wall, near 1 round a
+  // hole in a wall.
+  double wall = 0;
+  size_t points = 0;  // boundary points on the rim (of those examined)
+};
+
+// The closed rims of openings in the points: boundary points (a point whose
+// nearest neighbours, seen in its tangent plane, leave a wide empty sector)
+// linked into groups that run all the way round their centre.  At most
+// `max_points` points are examined (every ceil(n / max_points)-th in the
+// cloud's order), so the cost is bounded on any cloud; neighbours come from
+// every point.  Deterministic.
+std::vector<PointRim> find_point_rims(const PointIndex& index, size_t max_points = size_t{1} << 16);
+
+// Pairs of rims (indices into `rims`) that look like a tube's two cut ends:
+// sizes within a factor of two, a gap under five times the larger radius,
+// walls along the axes, and at least one rim facing the other across the
+// gap (as hole_bridge.h's doubtful pairs).
+std::vector<std::pair<size_t, size_t>> tube_end_pairs(const std::vector<PointRim>& rims);
+
+// Whether a closed, outward-oriented surface joins the two rims of a pair:
+// the middle of the gap between them (on the chord and on the Hermite curve
+// a bridge would follow) is inside the surface.  A capped pair leaves it
+// outside, in the gap.
+bool surface_joins(const TriangleMesh& closed_surface, const PointRim& a, const PointRim& b);
+
+}  // namespace dbss
