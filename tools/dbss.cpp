@@ -20,7 +20,8 @@ namespace {
 constexpr const char* kUsage =
     "usage: dbss <command> [options]\n"
     "\n"
-    "Displaced Butterfly Subdivision Surfaces codec, format version 1.0.\n"
+    "Displaced Butterfly Subdivision Surfaces codec. Reads format versions 1.0 to 1.2;\n"
+    "writes the lowest version a file needs (1.2 for context-coded levels).\n"
     "\n"
     "commands:\n"
     "  encode INPUT -o OUT.dbss   reconstruct a point cloud or mesh and write it\n"
