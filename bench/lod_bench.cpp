@@ -5,7 +5,7 @@
 // bounding-box diagonal (measure/mesh_distance).  Also: dbss's QEM against
 // meshoptimizer's simplifier for the control mesh.
 //
-//   lod_bench [--levels N] [--control-faces F] [--cut-holes H] [--errors E1,E2,..] [--samples N] [--detail] [--quick] [--skip-absent] MESH...
+//   lod_bench [--levels N] [--control-faces F] [--control-bits B] [--cut-holes H] [--errors E1,E2,..] [--samples N] [--detail] [--quick] [--skip-absent] MESH...
 //
 // With no MESH: the libcgal-demo meshes under test-data/ (closed, with
 // holes, several components); --cut-holes H adds each mesh again with H
@@ -45,6 +45,7 @@ constexpr int kDracoSpeed = 3;
 struct Args {
   uint32_t levels = 4;
   uint32_t control_faces = 0;  // 0: the encoder's default
+  int control_bits = 0;        // Draco's position bits for the control mesh; 0: the encoder's (from the step)
   std::vector<double> errors = {1e-4, 3e-5};
   size_t samples = 100000;
   bool skip_absent = false;
@@ -215,6 +216,7 @@ int run_mesh(const std::string& path, const Args& args, uint32_t holes = 0) {
     EncodeOptions o;
     o.levels = args.levels;
     o.control.control_faces = args.control_faces;
+    o.control_bits = args.control_bits;
     o.error = err;
     o.threads = 2;
     auto t = Clock::now();
@@ -299,6 +301,7 @@ int main(int argc, char** argv) {
     else if (a == "--cut-holes" && i + 1 < argc) args.cut_holes = static_cast<uint32_t>(std::atoi(argv[++i]));
     else if (a == "--control-faces" && i + 1 < argc) args.control_faces = static_cast<uint32_t>(std::atoi(argv[++i]));
     else if (a == "--samples" && i + 1 < argc) args.samples = static_cast<size_t>(std::atol(argv[++i]));
+    else if (a == "--control-bits" && i + 1 < argc) args.control_bits = std::atoi(argv[++i]);
     else if (a == "--detail") args.detail = true;
     else if (a == "--quick") args.quick = true;
     else if (a == "--errors" && i + 1 < argc) {
@@ -311,7 +314,7 @@ int main(int argc, char** argv) {
       }
     } else if (a == "--skip-absent") args.skip_absent = true;
     else if (!a.empty() && a[0] == '-') {
-      std::fprintf(stderr, "usage: lod_bench [--levels N] [--control-faces F] [--cut-holes H] [--errors E1,E2] [--samples N] [--detail] [--quick] [--skip-absent] MESH...\n");
+      std::fprintf(stderr, "usage: lod_bench [--levels N] [--control-faces F] [--control-bits B] [--cut-holes H] [--errors E1,E2] [--samples N] [--detail] [--quick] [--skip-absent] MESH...\n");
       return 1;
     } else args.meshes.push_back(a);
   }
