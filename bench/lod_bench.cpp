@@ -5,7 +5,7 @@
 // bounding-box diagonal (measure/mesh_distance).  Also: dbss's QEM against
 // meshoptimizer's simplifier for the control mesh.
 //
-//   lod_bench [--levels N] [--control-faces F] [--cut-holes H] [--errors E1,E2,..] [--samples N] [--skip-absent] MESH...
+//   lod_bench [--levels N] [--control-faces F] [--control-bits B] [--cut-holes H] [--errors E1,E2,..] [--samples N] [--detail] [--quick] [--skip-absent] MESH...
 //
 // With no MESH: the libcgal-demo meshes under test-data/ (closed, with
 // holes, several components); --cut-holes H adds each mesh again with H
@@ -45,9 +45,12 @@ constexpr int kDracoSpeed = 3;
 struct Args {
   uint32_t levels = 4;
   uint32_t control_faces = 0;  // 0: the encoder's default
+  int control_bits = 0;        // Draco's position bits for the control mesh; 0: the encoder's (from the step)
   std::vector<double> errors = {1e-4, 3e-5};
   size_t samples = 100000;
   bool skip_absent = false;
+  bool detail = false;  // --detail: where each level's bytes and error go
+  bool quick = false;   // --quick: no simplifier comparison, no decode timing (for sweeps)
   uint32_t cut_holes = 0;  // also run each closed mesh with this many holes cut in it
   std::vector<std::string> meshes;
 };
@@ -123,6 +126,28 @@ TriangleMesh cut_holes(const TriangleMesh& m, uint32_t count) {
   return out;
 }
 
+// Where a level's bytes and error go: its LEVL bytes per odd vertex, the
+// share of zeros and of |q| = 1, the clamps and the casts that missed (the
+// closest point instead of a hit on the normal line), and the error in each
+// direction (input to level: detail the level lacks; level to input: where
+// the level strays off the surface), both over the diagonal.
+void print_detail(const Encoding& en, const TriangleMesh& input, double diag, const MeshDistanceOptions& mo) {
+  std::printf("\n| level | odd | step / diag | LEVL bytes | bits / odd | zeros | abs(q) = 1 | clamped | cast missed | input to level | level to input | max |\n"
+              "|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+  for (uint32_t l = 1; l <= en.level_count; ++l) {
+    const LevelStats& st = en.levels.stats[l - 1];
+    const auto& q = en.levels.levels[l - 1].q;
+    size_t zeros = 0, ones = 0;
+    for (int32_t v : q) zeros += v == 0, ones += v == 1 || v == -1;
+    const TriangleMesh m{en.levels.positions[l], en.levels.triangles[l]};
+    const MeshDistance d = mesh_distance(input, m, mo);
+    const double n = st.odd ? double(st.odd) : 1.0;
+    std::printf("| %u | %zu | %.2e | %zu | %.2f | %.0f%% | %.0f%% | %zu | %zu | %.2e | %.2e | %.2e |\n", l, st.odd,
+                st.step / diag, st.bytes, 8.0 * st.bytes / n, 100 * zeros / n, 100 * ones / n, st.clamped, st.by_nearest,
+                d.a_to_b_mean / diag, d.b_to_a_mean / diag, d.max() / diag);
+  }
+}
+
 int run_mesh(const std::string& path, const Args& args, uint32_t holes = 0) {
   auto read = read_mesh(path);
   if (!read.ok()) {
@@ -149,6 +174,7 @@ int run_mesh(const std::string& path, const Args& args, uint32_t holes = 0) {
   // The control mesh's simplifier: dbss's QEM against meshoptimizer's.
   const uint32_t target = args.control_faces ? args.control_faces
                                              : default_control_faces(static_cast<uint32_t>(input.triangle_count()), info.genus);
+  if (!args.quick) {
   std::printf("\ncontrol mesh simplifier, target %u triangles:\n\n", target);
   std::printf("| simplifier | ms | triangles | topology | error |\n|---|---|---|---|---|\n");
   {
@@ -164,6 +190,7 @@ int run_mesh(const std::string& path, const Args& args, uint32_t holes = 0) {
       std::printf("| meshopt_simplify%s | %.0f | %zu | %s | %.2e |\n", opt ? " (lock border)" : "", 1e3 * ms, m.triangle_count(),
                   topo(mesh_info(m)).c_str(), mesh_distance(m, input, mo).mean() / diag);
     }
+  }
   }
 
   // Draco on the input.
@@ -189,6 +216,7 @@ int run_mesh(const std::string& path, const Args& args, uint32_t holes = 0) {
     EncodeOptions o;
     o.levels = args.levels;
     o.control.control_faces = args.control_faces;
+    o.control_bits = args.control_bits;
     o.error = err;
     o.threads = 2;
     auto t = Clock::now();
@@ -205,11 +233,12 @@ int run_mesh(const std::string& path, const Args& args, uint32_t holes = 0) {
     for (uint32_t l = 0; l <= en.level_count; ++l) {
       const TriangleMesh m{en.levels.positions[l], en.levels.triangles[l]};
       Row r{err, l, m.triangle_count(), prefix_bytes(en, l), mesh_distance(m, input, mo).mean() / diag, 0};
-      r.decode_s = bench::best_seconds([&] { (void)decode_bytes(en.bytes, static_cast<int>(l)); }, 0.3);
+      if (!args.quick) r.decode_s = bench::best_seconds([&] { (void)decode_bytes(en.bytes, static_cast<int>(l)); }, 0.3);
       std::printf("| %u | %zu | %llu | %.2e | %.1f |\n", l, r.triangles, static_cast<unsigned long long>(r.prefix), r.error,
                   1e3 * r.decode_s);
       rows.push_back(r);
     }
+    if (args.detail) print_detail(en, input, diag, mo);
     encodings.push_back(std::move(e).value());
   }
 
@@ -272,6 +301,9 @@ int main(int argc, char** argv) {
     else if (a == "--cut-holes" && i + 1 < argc) args.cut_holes = static_cast<uint32_t>(std::atoi(argv[++i]));
     else if (a == "--control-faces" && i + 1 < argc) args.control_faces = static_cast<uint32_t>(std::atoi(argv[++i]));
     else if (a == "--samples" && i + 1 < argc) args.samples = static_cast<size_t>(std::atol(argv[++i]));
+    else if (a == "--control-bits" && i + 1 < argc) args.control_bits = std::atoi(argv[++i]);
+    else if (a == "--detail") args.detail = true;
+    else if (a == "--quick") args.quick = true;
     else if (a == "--errors" && i + 1 < argc) {
       args.errors.clear();
       std::string s = argv[++i];
@@ -282,7 +314,7 @@ int main(int argc, char** argv) {
       }
     } else if (a == "--skip-absent") args.skip_absent = true;
     else if (!a.empty() && a[0] == '-') {
-      std::fprintf(stderr, "usage: lod_bench [--levels N] [--control-faces F] [--cut-holes H] [--errors E1,E2] [--samples N] [--skip-absent] MESH...\n");
+      std::fprintf(stderr, "usage: lod_bench [--levels N] [--control-faces F] [--control-bits B] [--cut-holes H] [--errors E1,E2] [--samples N] [--detail] [--quick] [--skip-absent] MESH...\n");
       return 1;
     } else args.meshes.push_back(a);
   }
