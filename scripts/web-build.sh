@@ -2,8 +2,9 @@
 # The WebAssembly build of the decoder (issue 17): zstd's decompressor and
 # Draco's decoder compiled from Debian's own source packages, then the same
 # format + decoder sources as the native build plus the C ABI glue in
-# web/src/, linked twice: an ES module for browsers (build-web/dist/) and a
-# node build for the tests (build-web/node/).  Also checks that the decoder
+# web/src/, compiled with and without WebAssembly SIMD (dbss_wasm.*,
+# dbss_wasm_scalar.*), each linked twice: an ES module for browsers
+# (build-web/dist/) and a node build for the tests (build-web/node/).  Also checks that the decoder
 # compiles with emscripten's libc++ (em++ -fsyntax-only) and installs the
 # npm packages of web/package-lock.json.  Nothing here is committed; the
 # sources and libraries are kept in build-web/ (gitignored) between runs.
