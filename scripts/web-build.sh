@@ -2,8 +2,9 @@
 # The WebAssembly build of the decoder (issue 17): zstd's decompressor and
 # Draco's decoder compiled from Debian's own source packages, then the same
 # format + decoder sources as the native build plus the C ABI glue in
-# web/src/, linked twice: an ES module for browsers (build-web/dist/) and a
-# node build for the tests (build-web/node/).  Also checks that the decoder
+# web/src/, compiled with and without WebAssembly SIMD (dbss_wasm.*,
+# dbss_wasm_scalar.*), each linked twice: an ES module for browsers
+# (build-web/dist/) and a node build for the tests (build-web/node/).  Also checks that the decoder
 # compiles with emscripten's libc++ (em++ -fsyntax-only) and installs the
 # npm packages of web/package-lock.json.  Nothing here is committed; the
 # sources and libraries are kept in build-web/ (gitignored) between runs.
@@ -127,42 +128,51 @@ spawn em++ "${cxxflags[@]}" "${includes[@]}" -fsyntax-only "${dbss_sources[@]:$h
 wait_all
 phase "syntax check passed"
 
-echo "web-build: dbss format + decoder for wasm"
-# WebAssembly SIMD by default: the decoder then runs Kernels::paired (two
-# edges per f64x2 vector, the same bits), some 10% faster per level than
-# the scalar kernels.  DBSS_WASM_SIMD=0 builds without it, for browsers
-# that lack SIMD (Chrome < 91, Firefox < 89, Safari < 16.4).
-simd=()
-[ "${DBSS_WASM_SIMD:-1}" = 0 ] || simd=(-msimd128)
-mkdir -p "$out/obj/dbss"
-# Objects built with other flags are rebuilt.
-flags="${cxxflags[*]} ${simd[*]}"
-[ "$(cat "$out/obj/dbss/flags" 2>/dev/null)" = "$flags" ] || rm -f "$out"/obj/dbss/*.o
-echo "$flags" > "$out/obj/dbss/flags"
-objs=()
-for f in "${dbss_sources[@]}" web/src/dbss_wasm.cpp; do
-  o=$out/obj/dbss/$(echo "${f%.cpp}" | tr / _).o
-  objs+=("$o")
-  if [ ! -f "$o" ] || [ "$f" -nt "$o" ] || [ -n "$(find format/include decoder/include decoder/src format/src -newer "$o" -print -quit)" ]; then
-    spawn em++ "${cxxflags[@]}" "${simd[@]}" "${includes[@]}" -c "$f" -o "$o"
-  fi
-done
-wait_all
-
+# Two modules from the same sources: with WebAssembly SIMD (-msimd128; the
+# decoder then runs Kernels::paired, two edges per f64x2 vector, the same
+# bits, 11-22% faster per level) as dbss_wasm.*, and without it as
+# dbss_wasm_scalar.*, for browsers that lack SIMD (Chrome < 91, Firefox < 89,
+# Safari < 16.4): loadModule() picks one by probing the engine.
 exports=$(sed -n 's/^[a-zA-Z].* \**\(dbss_[a-z_0-9]*\)(.*/_\1/p' web/src/dbss_wasm.cpp | paste -sd, -)
-# emmalloc: 3 KB less gzipped than dlmalloc, and no slower here (the
-# decoder's large arrays are few and reused).
-link=(-O3 "${objs[@]}" "$dlib" "$zlib" -sEXPORTED_FUNCTIONS="$exports,_malloc,_free"
-  -sEXPORTED_RUNTIME_METHODS=UTF8ToString -sALLOW_MEMORY_GROWTH=1 -sMODULARIZE=1 -sEXPORT_NAME=createDbssModule
-  -sFILESYSTEM=0 -sMALLOC=emmalloc)
 mkdir -p "$out/dist" "$out/node"
-# Web: an ES module (also loads in a module worker).
-em++ "${link[@]}" -sEXPORT_ES6=1 -sENVIRONMENT=web,worker -o "$out/dist/dbss_wasm.mjs"
-# Node: CommonJS (3.1.6's ES6 output calls require()), compiled synchronously
-# (node 20 cannot await the asynchronous compilation here).
-em++ "${link[@]}" -sENVIRONMENT=node -sWASM_ASYNC_COMPILATION=0 -o "$out/node/dbss_wasm.cjs"
+# build_module NAME [FLAGS...]: compiles into obj/NAME, links dist/NAME.mjs
+# (+ .wasm) and node/NAME.cjs (+ .wasm).
+build_module() {
+  local name=$1
+  shift
+  local obj=$out/obj/${name/dbss_wasm/dbss}  # obj/dbss, obj/dbss_scalar
+  mkdir -p "$obj"
+  # Objects built with other flags are rebuilt.
+  local flags="${cxxflags[*]} $*"
+  [ "$(cat "$obj/flags" 2>/dev/null)" = "$flags" ] || rm -f "$obj"/*.o
+  echo "$flags" > "$obj/flags"
+  local objs=() f o
+  for f in "${dbss_sources[@]}" web/src/dbss_wasm.cpp; do
+    o=$obj/$(echo "${f%.cpp}" | tr / _).o
+    objs+=("$o")
+    if [ ! -f "$o" ] || [ "$f" -nt "$o" ] || [ -n "$(find format/include decoder/include decoder/src format/src -newer "$o" -print -quit)" ]; then
+      spawn em++ "${cxxflags[@]}" "$@" "${includes[@]}" -c "$f" -o "$o"
+    fi
+  done
+  wait_all
+  # emmalloc: 3 KB less gzipped than dlmalloc, and no slower here (the
+  # decoder's large arrays are few and reused).
+  local link=(-O3 "${objs[@]}" "$dlib" "$zlib" -sEXPORTED_FUNCTIONS="$exports,_malloc,_free"
+    -sEXPORTED_RUNTIME_METHODS=UTF8ToString -sALLOW_MEMORY_GROWTH=1 -sMODULARIZE=1 -sEXPORT_NAME=createDbssModule
+    -sFILESYSTEM=0 -sMALLOC=emmalloc ${DBSS_WASM_LINK_FLAGS:-})
+  # Web: an ES module (also loads in a module worker).
+  spawn em++ "${link[@]}" -sEXPORT_ES6=1 -sENVIRONMENT=web,worker -o "$out/dist/$name.mjs"
+  # Node: CommonJS (3.1.6's ES6 output calls require()), compiled
+  # synchronously (node 20 cannot await the asynchronous compilation here).
+  spawn em++ "${link[@]}" -sENVIRONMENT=node -sWASM_ASYNC_COMPILATION=0 -o "$out/node/$name.cjs"
+  wait_all
+  echo "web-build: $name: $(stat -c %s "$out/dist/$name.wasm") bytes of wasm ($(gzip -9c "$out/dist/$name.wasm" | wc -c) gzipped)"
+}
+echo "web-build: dbss format + decoder for wasm, with SIMD"
+build_module dbss_wasm -msimd128
+echo "web-build: dbss format + decoder for wasm, without SIMD"
+build_module dbss_wasm_scalar
 phase "dbss linked"
-echo "web-build: $(stat -c %s "$out/dist/dbss_wasm.wasm") bytes of wasm ($(gzip -9c "$out/dist/dbss_wasm.wasm" | wc -c) gzipped)"
 
 # --- npm packages (three.js, playwright-core, draco3d) ------------------------
 if [ -f web/package-lock.json ]; then

@@ -2,7 +2,11 @@
 // web/loader.mjs (progressive fetching).
 
 /** The emscripten module of scripts/web-build.sh (opaque to callers). */
-export interface DbssModule { readonly HEAPU8: Uint8Array }
+export interface DbssModule {
+  readonly HEAPU8: Uint8Array;
+  /** true: the SIMD build, false: the scalar one, undefined: loaded from a URL given. */
+  simd: boolean | undefined;
+}
 
 /** An error of the file or the decoder, with the spec's error code. */
 export class DbssError extends Error {
@@ -17,9 +21,12 @@ export class DbssError extends Error {
   readonly detail: string;
 }
 
-/** Loads the module: build-web/node/ in node, build-web/dist/ (or `url`) in a browser or worker. */
-export function loadModule(url?: string): Promise<DbssModule>;
-/** Whether this engine has WebAssembly SIMD, which the default build needs (loadModule() without a URL throws a clear Error when not). */
+/**
+ * Loads the module: build-web/node/ in node, build-web/dist/ (or `url`) in a browser or worker.
+ * Without a URL: the SIMD build where simdSupported(), else the scalar one; `simd` forces either.
+ */
+export function loadModule(url?: string, options?: { simd?: boolean }): Promise<DbssModule>;
+/** Whether this engine has WebAssembly SIMD (loadModule() then picks the SIMD build). */
 export function simdSupported(): boolean;
 
 export interface LevelView {

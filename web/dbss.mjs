@@ -28,27 +28,32 @@ export class DbssError extends Error {
 const isNode = typeof process !== 'undefined' && process.versions != null && process.versions.node != null
   && typeof window === 'undefined';
 
-// Loads the module.  In node: build-web/node/dbss_wasm.cjs (or DBSS_WASM_DIR);
-// in a browser or worker: `url`, by default build-web/dist/dbss_wasm.mjs
-// beside this file's folder.
-export async function loadModule(url) {
+// Loads the module.  In node: build-web/node/ (or DBSS_WASM_DIR); in a
+// browser or worker: `url`, by default build-web/dist/ beside this file's
+// folder.  Without a URL it picks the build by probing the engine:
+// dbss_wasm (WebAssembly SIMD: Chrome 91, Firefox 89, Safari 16.4 and
+// later) where it validates SIMD, else dbss_wasm_scalar (same bits, some
+// 15% slower).  { simd: false } forces the scalar build, { simd: true } the
+// SIMD one.  The module's `simd` property says which was loaded (undefined
+// for a URL given).
+export async function loadModule(url, { simd } = {}) {
+  const useSimd = url === undefined ? (simd ?? simdSupported()) : undefined;
+  const name = useSimd === false ? 'dbss_wasm_scalar' : 'dbss_wasm';
+  let module;
   if (isNode) {
     const { createRequire } = await import('node:module');
     const { pathToFileURL } = await import('node:url');
     const dir = process.env.DBSS_WASM_DIR;
-    const file = url ?? (dir ? pathToFileURL(`${dir}/dbss_wasm.cjs`).href
-      : new URL('../build-web/node/dbss_wasm.cjs', import.meta.url).href);
+    const file = url ?? (dir ? pathToFileURL(`${dir}/${name}.cjs`).href
+      : new URL(`../build-web/node/${name}.cjs`, import.meta.url).href);
     const factory = createRequire(import.meta.url)(new URL(file).pathname);
-    return factory();
+    module = await factory();
+  } else {
+    const { default: factory } = await import(url ?? new URL(`../build-web/dist/${name}.mjs`, import.meta.url).href);
+    module = await factory();
   }
-  // The default build uses WebAssembly SIMD (Chrome 91, Firefox 89, Safari
-  // 16.4 and later); without it the module would fail to compile with an
-  // engine message that names nothing.  Say what is missing instead.
-  if (url === undefined && !simdSupported())
-    throw new Error('dbss: this browser has no WebAssembly SIMD, which the default build needs; '
-      + 'serve a build made with DBSS_WASM_SIMD=0 bash scripts/web-build.sh and pass its URL to loadModule()');
-  const { default: factory } = await import(url ?? new URL('../build-web/dist/dbss_wasm.mjs', import.meta.url).href);
-  return factory();
+  module.simd = useSimd;
+  return module;
 }
 
 // A module whose one function returns a v128 constant: valid only where

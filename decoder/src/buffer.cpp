@@ -11,7 +11,14 @@ constexpr size_t kHuge = size_t{2} << 20;
 }
 
 void* allocate_large(size_t bytes) {
-  if (bytes < kHuge) {
+#if defined(__EMSCRIPTEN__)
+  // WebAssembly has no huge pages, and linear memory only grows: rounding
+  // up to 2 MiB there would only waste it (up to 2 MiB per array).
+  constexpr bool kRound = false;
+#else
+  constexpr bool kRound = true;
+#endif
+  if (!kRound || bytes < kHuge) {
     void* p = std::malloc(bytes ? bytes : 1);
     if (!p) throw std::bad_alloc();
     return p;

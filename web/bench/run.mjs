@@ -8,9 +8,9 @@
 // 3-5.  Makes its files in build-web/bench/ with build/bin/dbss (encode, decode
 // --level L to PLY) and Debian's draco_encoder (its defaults), serves them,
 // and prints a table and the gzipped sizes of what a page ships.  --scalar
-// also times the build without WebAssembly SIMD (scripts/web-build.sh with
-// DBSS_WASM_SIMD=0 into build-web-scalar/) after checking that it gives the
-// same hashes;
+// also times the build without WebAssembly SIMD (build-web/dist/
+// dbss_wasm_scalar.*, what loadModule() falls back to) after checking that
+// it gives the same hashes;
 // --compare DIR times another web build of the module (DIR holds its
 // dbss_wasm.mjs and .wasm, e.g. one built from an older commit) the same way.
 import { spawnSync } from 'node:child_process';
@@ -51,14 +51,8 @@ const scalar = process.argv.includes('--scalar');
 const compareArg = process.argv.indexOf('--compare');
 const compareDir = compareArg > 0 ? resolve(process.argv[compareArg + 1]) : null;
 const other = scalar ? 'scalar' : compareDir ? 'other' : null;
-if (scalar) {
-  const r = spawnSync('bash', [join(repo, 'scripts/web-build.sh'), join(repo, 'build-web-scalar')], {
-    stdio: ['ignore', 'ignore', 'inherit'], env: { ...process.env, DBSS_WASM_SIMD: '0' } });
-  if (r.status !== 0) throw new Error('the scalar build failed');
-}
-
 const mounts = { ...repoMounts(repo, buildDir), '/bench-files/': work, '/bench-input/': dirname(file),
-  '/other/': compareDir ?? join(repo, 'build-web-scalar/dist') };
+  '/other/': compareDir ?? join(buildDir, 'dist') };
 const { server, url } = await startServer({ mounts });
 const browser = await chromium.launch({ executablePath: process.env.DBSS_CHROMIUM ?? '/usr/bin/chromium', args: ['--no-sandbox'] });
 async function measure(otherWasm) {
@@ -79,7 +73,7 @@ async function measure(otherWasm) {
 }
 
 // The builds and draco3d take turns in one page (bench.mjs).
-const res = await measure(other ? '/other/dbss_wasm.mjs' : null);
+const res = await measure(scalar ? '/other/dbss_wasm_scalar.mjs' : other ? '/other/dbss_wasm.mjs' : null);
 await browser.close();
 server.close();
 
@@ -97,8 +91,10 @@ console.log('every level hashes as build/bin/dbss decodes it' + (other ? ` (the 
 // What a page ships, gzipped (-9).
 const gz = (p) => gzipSync(readFileSync(p), { level: 9 }).length;
 const sizes = [
-  ['dbss wasm (build-web/dist/dbss_wasm.wasm)', join(buildDir, 'dist/dbss_wasm.wasm')],
-  ['dbss glue (dbss_wasm.mjs)', join(buildDir, 'dist/dbss_wasm.mjs')],
+  ['dbss wasm, SIMD (build-web/dist/dbss_wasm.wasm)', join(buildDir, 'dist/dbss_wasm.wasm')],
+  ['dbss glue, SIMD (dbss_wasm.mjs)', join(buildDir, 'dist/dbss_wasm.mjs')],
+  ['dbss wasm, scalar (dbss_wasm_scalar.wasm)', join(buildDir, 'dist/dbss_wasm_scalar.wasm')],
+  ['dbss glue, scalar (dbss_wasm_scalar.mjs)', join(buildDir, 'dist/dbss_wasm_scalar.mjs')],
   ['dbss API (dbss.mjs, loader.mjs, hash.mjs, worker.mjs)', ['dbss.mjs', 'loader.mjs', 'hash.mjs', 'worker.mjs'].map((f) => join(repo, 'web', f))],
   ['draco3d wasm (draco_decoder.wasm)', join(repo, 'web/node_modules/draco3d/draco_decoder.wasm')],
   ['draco3d glue (draco_decoder_nodejs.js)', join(repo, 'web/node_modules/draco3d/draco_decoder_nodejs.js')],

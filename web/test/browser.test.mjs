@@ -108,10 +108,14 @@ test('slow server: levels appear in order 0..4, each hashing as natively, each b
   assert.deepEqual(state.levels.map((l) => l.hash), expected);
   assert.equal(state.error, null);
   assert.equal(state.shown, 4);
-  // Progressive: each level was drawn when the bytes up to its chunk were
-  // in, not at the end (the server sends 512-byte pieces).
+  // Progressive: each level was drawn once the bytes up to its chunk were
+  // in, and, where its chunk ends well before the file does, before the
+  // file was all in.  (Not "within one 512-byte piece": on a loaded
+  // machine the worker may take two pieces in one go; that is timing.)
   const ends = [tocOf.ctrl.end, ...tocOf.levl.map((e) => e.end)];
-  state.levels.forEach((l, i) => assert.ok(l.bytes < ends[i] + 512 && l.bytes >= ends[i], `level ${i} drawn at byte ${l.bytes}, its chunk ends at ${ends[i]}`));
+  state.levels.forEach((l, i) => assert.ok(l.bytes >= ends[i], `level ${i} drawn at byte ${l.bytes}, its chunk ends at ${ends[i]}`));
+  state.levels.forEach((l, i) => assert.ok(ends[i] + 2048 > tocOf.size || l.bytes < tocOf.size,
+    `level ${i} (chunk ending at ${ends[i]}) drawn only when all ${tocOf.size} bytes were in`));
   for (let i = 1; i < state.levels.length; ++i) assert.ok(state.levels[i].at > state.levels[i - 1].at);
   assert.ok(state.firstDrawnMs > 0);
   console.log(`# first byte to level 0 drawn at ${RATE} bytes/s: ${state.firstDrawnMs.toFixed(0)} ms; level 0 complete at byte ${ends[0]} of ${tocOf.size}`);

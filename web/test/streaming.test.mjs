@@ -17,9 +17,37 @@ const recorded = (name) => readFileSync(`${repo}/tests/golden/v1/${name}.hashes`
 const module = await loadModule();
 
 test('the SIMD probe validates where the SIMD build runs (node 20 runs it)', () => {
-  // loadModule() in a browser refuses the default build with a clear
-  // message when this is false; a wrong probe would refuse every browser.
+  // loadModule() picks the scalar build when this is false; a wrong probe
+  // would send every browser to the slower build.
   assert.equal(simdSupported(), true);
+  assert.equal(module.simd, true);
+});
+
+test('without SIMD, loadModule() falls back to the scalar build, which decodes the same bits', async () => {
+  // An engine without SIMD, as the probe sees it: WebAssembly.validate
+  // refuses the probe (and loading the SIMD build there would fail).
+  const validate = WebAssembly.validate;
+  let scalar;
+  try {
+    WebAssembly.validate = () => false;
+    assert.equal(simdSupported(), false);
+    scalar = await loadModule();
+  } finally {
+    WebAssembly.validate = validate;
+  }
+  assert.equal(scalar.simd, false);
+  const forced = await loadModule(undefined, { simd: false });
+  assert.equal(forced.simd, false);
+  assert.notEqual(forced.HEAPU8.buffer, module.HEAPU8.buffer);
+  for (const name of ['torus-4-levels', 'bordered-grid-3-levels']) {
+    for (const m of [scalar, forced]) {
+      const d = new StreamingDecoder(m);
+      d.push(golden(name));
+      d.finish();
+      assert.deepEqual(levelHashes(d), recorded(name), `${name}, scalar build`);
+      d.dispose();
+    }
+  }
 });
 
 function levelHashes(d) {
