@@ -46,6 +46,7 @@ struct Options {
   size_t samples = 200000;
   uint32_t seed = 1;
   bool dbss = true, afront = true, poisson = true;
+  bool fixed_control = false;  // dbss over the default control mesh only (EncodeOptions::choose_control off): the before
   bool skip_absent = false;  // the ctest entry: an absent mesh skips (exit 77) unless CI=true
   std::string csv;
   std::vector<std::string> meshes;
@@ -53,7 +54,8 @@ struct Options {
 
 constexpr const char* kUsage =
     "usage: rd_bench [--points N] [--noise F] [--levels L] [--qp 8,10,11,12] [--samples S] [--seed S]\n"
-    "                [--methods dbss,afront,poisson] [--csv OUT.csv] [--skip-absent] [MESH_FILE...]\n";
+    "                [--methods dbss,afront,poisson] [--csv OUT.csv] [--skip-absent] [--fixed-control]\n"
+    "                [MESH_FILE...]\n";
 
 // "L3", "qp 11".  (Appending, not `"L" + std::to_string(l)`, which GCC 12
 // flags with a false -Wrestrict at -O3.)
@@ -84,6 +86,7 @@ bool parse(int argc, char** argv, Options& o) {
     else if (a == "--seed" && has_value) o.seed = static_cast<uint32_t>(std::strtoul(argv[++i], nullptr, 10));
     else if (a == "--csv" && has_value) o.csv = argv[++i];
     else if (a == "--skip-absent") o.skip_absent = true;
+    else if (a == "--fixed-control") o.fixed_control = true;
     else if (a == "--qp" && has_value) {
       o.qp.clear();
       for (const std::string& q : split(argv[++i])) o.qp.push_back(std::atoi(q.c_str()));
@@ -142,11 +145,16 @@ bool run_dbss(const std::string& shape, const dbss::PointCloud& points, const Tr
               std::vector<RdRow>& rows) {
   dbss::EncodeOptions eo;
   eo.levels = o.levels;
+  eo.choose_control = !o.fixed_control;
   const auto t0 = Clock::now();
   auto e = dbss::encode_points(points, eo);
   const double seconds = since(t0);
   if (!e.ok()) return std::fprintf(stderr, "rd_bench: %s: dbss: %s\n", shape.c_str(), e.status().to_string().c_str()), false;
   const dbss::Encoding& enc = e.value();
+  // Where the encode's time went, and which control mesh it kept.
+  std::fprintf(stderr, "rd_bench: %s: dbss %.1f s: control %.1f, draco %.2f, levels %.1f, choice %.1f, check %.1f; control: %s\n",
+               shape.c_str(), seconds, enc.seconds.control, enc.seconds.draco, enc.seconds.levels, enc.seconds.choice,
+               enc.seconds.check, enc.control_choice.empty() ? "the default (not chosen)" : enc.control_choice.c_str());
   dbss::ProgressiveDecoder decoder;
   uint64_t fed = 0;
   for (uint32_t l = 0; l <= o.levels; ++l) {

@@ -1,4 +1,5 @@
 #include "dbss/encoder/encode.h"
+#include "control_choice.h"
 #include "encode_steps.h"
 
 #include <algorithm>
@@ -10,6 +11,7 @@
 #include "dbss/decoder/control_mesh.h"
 #include "dbss/decoder/topology.h"
 #include "dbss/encoder/control_mesh_codec.h"
+#include "dbss/encoder/mesh_info.h"
 #include "dbss/encoder/point_index.h"
 #include "dbss/encoder/quantize.h"
 #include "dbss/format/writer.h"
@@ -71,41 +73,13 @@ Status control_mesh_through_draco(Encoding& e) {
   return {};
 }
 
-Result<Encoding> encode_points(const PointCloud& pc, const EncodeOptions& o) {
-  if (pc.size() == 0) return Status(ErrorCode::invalid_argument, "no points");
-  return encode_points(PointIndex(pc), o);
-}
+namespace {
 
-Result<Encoding> encode_points(const PointIndex& input_index, const EncodeOptions& o) {
-  if (o.control_bits != 0 && (o.control_bits < 8 || o.control_bits > 30))
-    return Status(ErrorCode::invalid_argument, "control bits must be 8..30, or 0 to derive them from the step");
-  if (o.levels > format::kMaxLevelsInFormat && o.levels != kAutoLevels)
-    return Status(ErrorCode::invalid_argument, "too many levels");
-  if (input_index.points().size() == 0) return Status(ErrorCode::invalid_argument, "no points");
-  Encoding e;
-  auto t = Clock::now();
-  // Outliers go before anything is built on the points; a second index only
-  // when some were dropped.  `e.points` moves with `e` on return, after
-  // `cleaned` (which refers to it) is gone.
-  if (o.on_progress && o.outliers.enabled) o.on_progress("removing outliers");
-  OutlierOptions outliers = o.outliers;
-  outliers.threads = std::max(1u, o.threads);
-  std::unique_ptr<PointIndex> cleaned = remove_outliers(input_index, outliers, &e.outliers, e.points);
-  if (!cleaned && e.points.size() != input_index.points().size()) cleaned = std::make_unique<PointIndex>(e.points);
-  const PointIndex& index = cleaned ? *cleaned : input_index;
-  const PointCloud& pc = index.points();
-  e.seconds.outliers = since(t);
-  t = Clock::now();
-  ControlMeshOptions co = o.control;
-  if (!co.on_stage && o.on_progress) co.on_stage = [&](const char* s) { o.on_progress(s); };
-  auto stages = build_control_mesh(index, co);
-  if (!stages.ok()) return stages.status();
-  e.stages = std::move(stages).value();
-  e.seconds.control = since(t);
-
+// Everything after the control mesh, up to the levels: Draco's position
+// bits, creases, the control mesh through Draco, the levels.
+Status encode_over_control(Encoding& e, const PointIndex& index, const EncodeOptions& o) {
   format::FileContents& c = e.contents;
-  set_extent_and_step(e, pc.xyz, o);
-
+  const PointCloud& pc = index.points();
   // Draco's position bits: from the step unless given.  A control vertex
   // is an even vertex of every level and never moves again, so its
   // rounding should be about a displacement's (half a step): 2^bits steps
@@ -115,7 +89,7 @@ Result<Encoding> encode_points(const PointIndex& input_index, const EncodeOption
 
   // Sharp features: crease edges found from the points, their vertices
   // snapped onto the feature lines before Draco rounds them.
-  t = Clock::now();
+  auto t = Clock::now();
   format::Creases creases = find_creases(e.stages.control, index, o.creases, &e.creases);
   e.seconds.control += since(t);
 
@@ -149,6 +123,116 @@ Result<Encoding> encode_points(const PointIndex& input_index, const EncodeOption
   e.levels = std::move(encoded).value();
   e.seconds.levels = since(t);
 
+  return {};
+}
+
+// The control mesh by rate-distortion (control_choice.h): `e` holds the
+// encoding over the default face count; `coarse`, a copy of `e` taken
+// before its levels, gets a quarter of those faces and its own levels, and
+// replaces `e` when its curve reaches every level of e's within 2% of the
+// distance to the points in no more bytes.  A quarter, not a half: the
+// level that crosses the points' density then has about as many vertices
+// as e's (one level later), so the coarse candidate can reach the same
+// floor; with half the faces it crosses at half the vertices and its later
+// levels store only zeros (armadillo: 1.25x advancing front's error, issue
+// 15).  `choice` says what was kept and why, for `meta`.
+Status choose_control(Encoding& e, Encoding coarse, const PointIndex& index, const EncodeOptions& o) {
+  const auto t = Clock::now();
+  const uint32_t faces = static_cast<uint32_t>(e.stages.control.triangle_count());
+  const int64_t genus = std::max<int64_t>(0, mesh_info(e.stages.control).genus);
+  uint32_t fewer = (faces / 4) & ~1u;
+  // default_control_faces' own floor for the genus: fewer faces than that
+  // cannot carry the handles.
+  if (fewer < 96 + 64 * genus) {
+    e.control_choice = std::to_string(faces) + " faces: the default (a quarter is under the floor for genus " + std::to_string(genus) + ")";
+    return {};
+  }
+  EncodeOptions oq = o;
+  oq.control.control_faces = fewer;
+  oq.control.on_stage = nullptr;
+  oq.on_progress = nullptr;
+  auto stages = build_control_mesh(index, oq.control);
+  // A candidate that cannot be built is no candidate: the default stands.
+  if (!stages.ok()) {
+    e.control_choice = std::to_string(faces) + " faces: the default (" + std::to_string(fewer) + " failed: " + stages.status().to_string() + ")";
+    return {};
+  }
+  coarse.stages = std::move(stages).value();
+  coarse.seconds.control = since(t);
+  if (Status st = encode_over_control(coarse, index, oq); !st.ok()) {
+    e.control_choice = std::to_string(faces) + " faces: the default (" + std::to_string(fewer) + " failed: " + st.to_string() + ")";
+    return {};
+  }
+  const std::vector<RdPoint> fine_curve = encoder_rd_curve(e, index), coarse_curve = encoder_rd_curve(coarse, index);
+  const bool keep_coarse = rd_curve_dominates(coarse_curve, fine_curve);
+  const auto describe = [](const std::vector<RdPoint>& c) {
+    std::string s;
+    char buf[48];
+    for (const RdPoint& p : c) std::snprintf(buf, sizeof buf, "%s%.1f KB %.3g", s.empty() ? "" : ", ", p.bytes / 1000, p.error), s += buf;
+    return s;
+  };
+  const std::string why = std::to_string(fewer) + " faces (levels: " + describe(coarse_curve) + ") against " + std::to_string(faces) +
+                          " (" + describe(fine_curve) + "), distances to the points";
+  if (keep_coarse) {
+    // The index refers to e.points: its buffer stays with e.
+    std::swap(e.points, coarse.points);
+    e = std::move(coarse);
+  }
+  e.control_choice = (keep_coarse ? "kept " : "kept the default over ") + why;
+  // The time the comparison added: the candidate that lost, and the curves.
+  e.seconds.choice = since(t) - (keep_coarse ? e.seconds.control + e.seconds.draco + e.seconds.levels : 0.0);
+  return {};
+}
+
+}  // namespace
+
+Result<Encoding> encode_points(const PointCloud& pc, const EncodeOptions& o) {
+  if (pc.size() == 0) return Status(ErrorCode::invalid_argument, "no points");
+  return encode_points(PointIndex(pc), o);
+}
+
+Result<Encoding> encode_points(const PointIndex& input_index, const EncodeOptions& o) {
+  if (o.control_bits != 0 && (o.control_bits < 8 || o.control_bits > 30))
+    return Status(ErrorCode::invalid_argument, "control bits must be 8..30, or 0 to derive them from the step");
+  if (o.levels > format::kMaxLevelsInFormat && o.levels != kAutoLevels)
+    return Status(ErrorCode::invalid_argument, "too many levels");
+  if (input_index.points().size() == 0) return Status(ErrorCode::invalid_argument, "no points");
+  Encoding e;
+  auto t = Clock::now();
+  // Outliers go before anything is built on the points; a second index only
+  // when some were dropped.  `e.points` moves with `e` on return, after
+  // `cleaned` (which refers to it) is gone.
+  if (o.on_progress && o.outliers.enabled) o.on_progress("removing outliers");
+  OutlierOptions outliers = o.outliers;
+  outliers.threads = std::max(1u, o.threads);
+  std::unique_ptr<PointIndex> cleaned = remove_outliers(input_index, outliers, &e.outliers, e.points);
+  if (!cleaned && e.points.size() != input_index.points().size()) cleaned = std::make_unique<PointIndex>(e.points);
+  const PointIndex& index = cleaned ? *cleaned : input_index;
+  const PointCloud& pc = index.points();
+  e.seconds.outliers = since(t);
+  t = Clock::now();
+  ControlMeshOptions co = o.control;
+  if (!co.on_stage && o.on_progress) co.on_stage = [&](const char* s) { o.on_progress(s); };
+  auto stages = build_control_mesh(index, co);
+  if (!stages.ok()) return stages.status();
+  e.stages = std::move(stages).value();
+  e.seconds.control = since(t);
+
+  set_extent_and_step(e, pc.xyz, o);
+
+  // The control mesh by rate-distortion: a candidate with a quarter of the
+  // faces (choose_control) unless the face count was given.
+  const bool choose = o.control.control_faces == 0 && o.choose_control;
+  std::unique_ptr<Encoding> coarse;
+  if (choose) coarse = std::make_unique<Encoding>(e);
+  if (Status st = encode_over_control(e, index, o); !st.ok()) return st;
+  if (choose) {
+    if (Status st = choose_control(e, std::move(*coarse), index, o); !st.ok()) return st;
+    coarse.reset();
+  }
+  const uint32_t level_count = e.level_count;
+  format::FileContents& c = e.contents;
+
   // What a reader of the file should know about how far to trust it.
   t = Clock::now();
   e.check = check_scan(e, index, std::max(1u, o.threads));
@@ -172,6 +256,7 @@ Result<Encoding> encode_points(const PointIndex& input_index, const EncodeOption
                 {"encoder.params", params}};
   if (!o.source_name.empty()) c.metadata.push_back({"source", o.source_name});
   c.metadata.push_back({"surface", e.stages.surface_reason});
+  if (!e.control_choice.empty()) c.metadata.push_back({"control.choice", e.control_choice});
   if (e.outliers.points_in != e.outliers.kept())
     c.metadata.push_back({"outliers", std::to_string(e.outliers.duplicates) + " duplicates, " +
                                           std::to_string(e.outliers.isolated) + " isolated points and " +

@@ -64,3 +64,71 @@ TEST_CASE("levels against the true surface: no level farther than the one before
     }
   }
 }
+
+TEST_CASE("the control mesh chosen by rate-distortion is never worse against the true surface than the default") {
+  // EncodeOptions::choose_control also encodes over a quarter of the default
+  // faces and keeps it only when, measured against the points, it reaches
+  // every level of the default in no more bytes.  Here the same must hold
+  // against the exact surface: at each level of the default encoding, the
+  // kept encoding's curve (log bytes against log error, as rd_bench
+  // interpolates) comes within 3% of that error in no more bytes.  A rule
+  // that kept a control mesh too coarse for the shape (the levels crossing
+  // the points' density at too few vertices) fails at the finest level.
+  for (const test::Shape& s : test::genus_shapes()) {
+    const std::string name = s.name;
+    if (name != "torus" && name != "double torus") continue;
+    INFO(name);
+    const PointCloud pc = test::sample_sdf(s.sdf, s.lo, s.hi, 3000);
+    const PointCloud truth = test::sample_sdf(s.sdf, s.lo, s.hi, 20000, 99);
+    const std::vector<double> truth_points(truth.xyz.begin(), truth.xyz.end());
+    EncodeOptions o;
+    o.levels = kAutoLevels;
+    o.choose_control = false;
+    auto fixed = encode_points(pc, o);
+    o.choose_control = true;
+    auto chosen = encode_points(pc, o);
+    REQUIRE(fixed.ok());
+    REQUIRE(chosen.ok());
+    const Encoding& f = fixed.value();
+    const Encoding& c = chosen.value();
+    INFO("choice: " << c.control_choice);
+    CHECK(!c.control_choice.empty());
+    CHECK(f.control_choice.empty());
+    const size_t default_faces = f.stages.control.triangle_count(), kept_faces = c.stages.control.triangle_count();
+    const bool coarse = kept_faces != default_faces;
+    // "kept N faces ..." for the quarter; otherwise the default, and why.
+    if (coarse) CHECK(c.control_choice.rfind("kept " + std::to_string(kept_faces) + " faces", 0) == 0);
+    else CHECK(c.control_choice.find("the default") != std::string::npos);
+    if (!coarse) {  // the default kept: the very same control mesh and levels (only `meta` says more)
+      CHECK(c.contents.control_mesh == f.contents.control_mesh);
+      CHECK(c.contents.level_data == f.contents.level_data);
+    }
+    const auto curve = [&](const Encoding& e) {
+      std::vector<std::pair<double, double>> out;  // (bytes, error)
+      for (uint32_t l = 0; l <= e.level_count; ++l) {
+        const TriangleMesh level{e.levels.positions[l], e.levels.triangles[l]};
+        out.emplace_back(static_cast<double>(prefix_bytes(e, l)), two_sided(level, s, truth_points) / e.diagonal);
+      }
+      return out;
+    };
+    const auto cf = curve(f), cc = curve(c);
+    for (size_t l = 0; l < cf.size(); ++l) {
+      const double target = 1.03 * cf[l].second;
+      double reached = -1;
+      for (size_t i = 0; i < cc.size(); ++i) {
+        if (!(cc[i].second <= target)) continue;
+        if (i == 0) {
+          reached = cc[0].first;
+          break;
+        }
+        const double t = (std::log(target) - std::log(cc[i - 1].second)) / (std::log(cc[i].second) - std::log(cc[i - 1].second));
+        reached = std::exp(std::log(cc[i - 1].first) + t * (std::log(cc[i].first) - std::log(cc[i - 1].first)));
+        break;
+      }
+      INFO("default level " << l << ": " << cf[l].first << " bytes, error " << cf[l].second << "; kept " << kept_faces
+                            << " faces reaches it in " << reached << " bytes");
+      CHECK(reached > 0);
+      CHECK(reached <= cf[l].first);
+    }
+  }
+}

