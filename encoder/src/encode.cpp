@@ -75,6 +75,9 @@ Status control_mesh_through_draco(Encoding& e) {
 
 namespace {
 
+// Largest cloud the control mesh is chosen by rate-distortion for.
+constexpr size_t kMaxChoicePoints = size_t{1} << 20;
+
 // Everything after the control mesh, up to the levels: Draco's position
 // bits, creases, the control mesh through Draco, the levels.
 Status encode_over_control(Encoding& e, const PointIndex& index, const EncodeOptions& o) {
@@ -222,7 +225,15 @@ Result<Encoding> encode_points(const PointIndex& input_index, const EncodeOption
 
   // The control mesh by rate-distortion: a candidate with a quarter of the
   // faces (choose_control) unless the face count was given.
-  const bool choose = o.control.control_faces == 0 && o.choose_control;
+  // Above kMaxChoicePoints the candidate's second control mesh and levels
+  // would cost about as much as the whole encoding again (10M points:
+  // 13 s of control mesh, 15 s of levels), for a control mesh of at most
+  // 4,000 faces whose choice the points' count hardly moves.
+  const bool big = pc.size() > kMaxChoicePoints;
+  const bool choose = o.control.control_faces == 0 && o.choose_control && !big;
+  if (o.control.control_faces == 0 && o.choose_control && big)
+    e.control_choice = std::to_string(e.stages.control.triangle_count()) +
+                       " faces: the default (no candidate compared over " + std::to_string(kMaxChoicePoints) + " points)";
   std::unique_ptr<Encoding> coarse;
   if (choose) coarse = std::make_unique<Encoding>(e);
   if (Status st = encode_over_control(e, index, o); !st.ok()) return st;
