@@ -2,25 +2,48 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 #include <nanoflann.hpp>
 
 namespace dbss {
 
 namespace {
+// The tree's view of the points: while it is built, the cloud itself; after,
+// a copy in the tree's leaf order (see PointIndex::Tree).
 struct CloudAdaptor {
-  const PointCloud& pc;
-  size_t kdtree_get_point_count() const { return pc.size(); }
-  float kdtree_get_pt(size_t i, size_t dim) const { return pc.xyz[3 * i + dim]; }
+  const float* xyz;
+  size_t count;
+  size_t kdtree_get_point_count() const { return count; }
+  float kdtree_get_pt(size_t i, size_t dim) const { return xyz[3 * i + dim]; }
   template <class B>
   bool kdtree_get_bbox(B&) const { return false; }
 };
 using Tree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<float, CloudAdaptor>, CloudAdaptor, 3, uint32_t>;
 }  // namespace
 
+// The tree is built over the cloud as given; then its points are copied in
+// the order the tree's leaves list them and the tree is pointed at the
+// copy, its index list made the identity: a leaf's points are then read side
+// by side instead of from all over the cloud (on 10M points in random order,
+// nearly every point a search looked at missed the cache).  The searches do
+// the same arithmetic on the same floats in the same order, and a hit's
+// position in the copy maps back to the point's index: the same answers,
+// ties included, as the tree over the cloud.
 struct PointIndex::Tree {
   CloudAdaptor adaptor;
   dbss::Tree tree;
-  explicit Tree(const PointCloud& pc) : adaptor{pc}, tree(3, adaptor, nanoflann::KDTreeSingleIndexAdaptorParams(16)) {}
+  std::vector<float> leaf_xyz;     // the points in leaf order
+  std::vector<uint32_t> original;  // a leaf-order position's point index
+  explicit Tree(const PointCloud& pc)
+      : adaptor{pc.xyz.data(), pc.size()}, tree(3, adaptor, nanoflann::KDTreeSingleIndexAdaptorParams(16)) {
+    original.swap(tree.vAcc);
+    leaf_xyz.resize(3 * original.size());
+    for (size_t p = 0; p < original.size(); ++p)
+      for (int a = 0; a < 3; ++a) leaf_xyz[3 * p + a] = pc.xyz[3 * size_t{original[p]} + a];
+    tree.vAcc.resize(original.size());
+    std::iota(tree.vAcc.begin(), tree.vAcc.end(), 0u);
+    adaptor.xyz = leaf_xyz.data();
+  }
 };
 
 PointIndex::PointIndex(const PointCloud& points) : points_(points), tree_(std::make_unique<Tree>(points)) {}
@@ -30,7 +53,7 @@ uint32_t PointIndex::nearest(const float q[3]) const {
   uint32_t i = 0;
   float d = 0;
   tree_->tree.knnSearch(q, 1, &i, &d);
-  return i;
+  return tree_->original[i];
 }
 
 namespace {
@@ -59,13 +82,15 @@ uint32_t PointIndex::nearest(const float q[3], uint32_t hint) const {
     const float diff = q[a] - p[a];
     d += diff * diff;
   }
-  BoundedNearest r{d * (1 + 1e-5f) + 1e-30f, hint};
+  BoundedNearest r{d * (1 + 1e-5f) + 1e-30f, UINT32_MAX};
   tree_->tree.findNeighbors(r, q, nanoflann::SearchParams());
-  return r.index;
+  return r.index == UINT32_MAX ? hint : tree_->original[r.index];
 }
 
 size_t PointIndex::nearest_k(const float q[3], size_t k, uint32_t* indices, float* dist2) const {
-  return tree_->tree.knnSearch(q, k, indices, dist2);
+  const size_t got = tree_->tree.knnSearch(q, k, indices, dist2);
+  for (size_t j = 0; j < got; ++j) indices[j] = tree_->original[indices[j]];
+  return got;
 }
 
 void PointIndex::within(const float q[3], float radius, std::vector<uint32_t>& out) const {
@@ -74,7 +99,7 @@ void PointIndex::within(const float q[3], float radius, std::vector<uint32_t>& o
   params.sorted = false;
   tree_->tree.radiusSearch(q, radius * radius, hits, params);  // L2_Simple works on squared distances
   out.clear();
-  for (const auto& h : hits) out.push_back(h.first);
+  for (const auto& h : hits) out.push_back(tree_->original[h.first]);
 }
 
 double point_spacing(const PointIndex& index, size_t k, double quantile) {
