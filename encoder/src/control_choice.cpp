@@ -65,10 +65,15 @@ bool rd_curve_dominates(const std::vector<RdPoint>& coarse, const std::vector<Rd
       }
       const RdPoint& p = coarse[i - 1];
       const RdPoint& r = coarse[i];
+      // A zero error (an exact fit) has no logarithm: take the level's bytes.
+      if (!(r.error > 0 && p.error > 0)) {
+        reached = r.bytes;
+        break;
+      }
       const double t = (std::log(target) - std::log(p.error)) / (std::log(r.error) - std::log(p.error));
       reached = std::exp(std::log(p.bytes) + t * (std::log(r.bytes) - std::log(p.bytes)));
     }
-    if (reached < 0 || reached > f.bytes) return false;
+    if (!(reached >= 0 && reached <= f.bytes)) return false;  // NaN fails too
   }
   return true;
 }

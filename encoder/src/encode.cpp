@@ -142,6 +142,7 @@ Status encode_over_control(Encoding& e, const PointIndex& index, const EncodeOpt
 Status choose_control(Encoding& e, Encoding coarse, const PointIndex& index, const EncodeOptions& o) {
   const auto t = Clock::now();
   const uint32_t faces = static_cast<uint32_t>(e.stages.control.triangle_count());
+  const double default_work = e.seconds.control + e.seconds.draco + e.seconds.levels;
   const int64_t genus = std::max<int64_t>(0, mesh_info(e.stages.control).genus);
   uint32_t fewer = (faces / 4) & ~1u;
   // default_control_faces' own floor for the genus: fewer faces than that
@@ -183,7 +184,9 @@ Status choose_control(Encoding& e, Encoding coarse, const PointIndex& index, con
   }
   e.control_choice = (keep_coarse ? "kept " : "kept the default over ") + why;
   // The time the comparison added: the candidate that lost, and the curves.
-  e.seconds.choice = since(t) - (keep_coarse ? e.seconds.control + e.seconds.draco + e.seconds.levels : 0.0);
+  // Kept, the coarse candidate's own stages are in e.seconds; the default's,
+  // which ran before `t`, are what it cost.
+  e.seconds.choice = keep_coarse ? since(t) - (e.seconds.control + e.seconds.draco + e.seconds.levels) + default_work : since(t);
   return {};
 }
 

@@ -25,9 +25,9 @@ constexpr double kRimGap = 5.0 * std::numbers::pi / 6.0;
 // Fewest boundary points a rim is made of: fewer are a ragged spot in a
 // sparse scan, not the edge of an opening.
 constexpr size_t kMinRimPoints = 8;
-// A rim runs all the way round its centre: of 12 sectors of 30 degrees
-// round its axis, at most one may hold none of its points (an arc, the
-// edge of a patch, is not the end of a tube).
+// A rim runs (most of the way) round its centre: of 12 sectors of 30
+// degrees round its axis, at least 8 hold some of its points (an arc, the
+// edge of a patch, is not the end of a tube; a sparse scan's rim has gaps).
 constexpr int kSectors = 12;
 constexpr int kMinSectors = 8;
 // Largest mean wall of a pair taken for a tube's two ends (the bound
@@ -78,8 +78,20 @@ std::vector<PointRim> find_point_rims(const PointIndex& index, size_t max_points
   const PointCloud& pc = index.points();
   const size_t n = pc.size();
   std::vector<PointRim> rims;
-  if (n < kNeighbours || max_points == 0) return rims;
-  const size_t stride = (n + max_points - 1) / max_points;
+  if (n < kNeighbours || max_points < kNeighbours) return rims;
+  if (n > max_points) {
+    // A larger cloud is judged by every stride-th point with its own index,
+    // as a sparser scan of the same surface: the neighbourhoods and the
+    // links between boundary points grow together.  (Examining a share of
+    // the points against the full cloud's neighbours, and linking them over
+    // `stride` times their reach, joined the two ends of a cut band.)
+    const size_t stride = (n + max_points - 1) / max_points;
+    PointCloud share;
+    share.xyz.reserve(3 * (n / stride + 1));
+    for (size_t i = 0; i < n; i += stride) share.xyz.insert(share.xyz.end(), &pc.xyz[3 * i], &pc.xyz[3 * i] + 3);
+    const PointIndex share_index(share);
+    return find_point_rims(share_index, max_points);
+  }
   // The boundary points: where each is, its surface normal, and the
   // direction (in its tangent plane) of the empty sector, into the opening.
   PointCloud edge;
@@ -88,7 +100,7 @@ std::vector<PointRim> find_point_rims(const PointIndex& index, size_t max_points
   float d2[kNeighbours];
   std::vector<double> angle, reach_of;  // reach_of: each boundary point's distance to its farthest neighbour
   std::vector<uint32_t> near;
-  for (size_t i = 0; i < n; i += stride) {
+  for (size_t i = 0; i < n; ++i) {
     const float* q = &pc.xyz[3 * i];
     const size_t k = index.nearest_k(q, kNeighbours, nb, d2);
     if (k < kNeighbours) continue;
@@ -134,15 +146,14 @@ std::vector<PointRim> find_point_rims(const PointIndex& index, size_t max_points
   }
   const size_t m = edge.size();
   if (m < kMinRimPoints) return rims;
-  // Link boundary points closer than their neighbourhoods' radius (about
-  // three local spacings, so a sparse stretch of rim stays one); examined
-  // one in `stride`, a rim's points lie about `stride` times farther apart
-  // along it.
+  // Link boundary points closer than twice their neighbourhoods' radius
+  // (about three local spacings each), so a sparse stretch of rim stays
+  // one.
   Sets sets(m);
   {
     const PointIndex edge_index(edge);
     for (size_t i = 0; i < m; ++i) {
-      edge_index.within(&edge.xyz[3 * i], static_cast<float>(2 * reach_of[i] * static_cast<double>(stride)), near);
+      edge_index.within(&edge.xyz[3 * i], static_cast<float>(2 * reach_of[i]), near);
       for (uint32_t j : near) sets.join(static_cast<uint32_t>(i), j);
     }
   }

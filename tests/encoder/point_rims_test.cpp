@@ -7,7 +7,10 @@
 #include <numbers>
 #include <vector>
 
+#include "dbss/encoder/encode.h"
+#include "dbss/encoder/mesh_info.h"
 #include "dbss/encoder/point_rims.h"
+#include "dbss/encoder/scan_check.h"
 #include "../defect_shapes.h"
 #include "../shapes.h"
 
@@ -24,9 +27,9 @@ const dt::Shape& torus_shape() {
 
 // The torus's points without a band right round its tube: the points whose
 // angle round the z axis is within `half_width` of +x.
-PointCloud cut_torus(double half_width) {
+PointCloud cut_torus(double half_width, size_t count = 8000) {
   const dt::Shape& s = torus_shape();
-  const PointCloud c = dt::sample_sdf(s.sdf, s.lo, s.hi, 8000, 5);
+  const PointCloud c = dt::sample_sdf(s.sdf, s.lo, s.hi, count, 5);
   return dt::keep_points(c, [&](size_t i) { return std::abs(std::atan2(c.xyz[3 * i + 1], c.xyz[3 * i])) > half_width; });
 }
 
@@ -80,4 +83,77 @@ TEST_CASE("point rims: a cap cut off a sphere leaves one rim, a hole in a wall, 
   CHECK(rims[0].wall > 0.55);
   CHECK(rims[0].axis[2] < -0.9);  // away from the opening at the top
   CHECK(tube_end_pairs(rims).empty());
+}
+
+TEST_CASE("point rims: a large cloud judged by a share of its points still finds both ends of a cut band") {
+  // Every 2nd point (max_points 8000 of ~14,500) as a cloud of its own: the
+  // two ends stay apart and still pair.  (Not much sparser than 7,000
+  // points on this torus: a share of 3,600 found no rim at all, its rims
+  // broken into arcs.)
+  const PointCloud c = cut_torus(0.35, 16000);
+  REQUIRE(c.size() > 8000);
+  const std::vector<PointRim> rims = find_point_rims(PointIndex(c), 8000);
+  REQUIRE(rims.size() == 2);
+  CHECK(tube_end_pairs(rims).size() == 1);
+}
+
+TEST_CASE("point rims: the self-check warns 'topology' where a closed surface caps a cut band's two ends, not where it joins them") {
+  const PointCloud c = cut_torus(0.35);
+  const PointIndex index(c);
+  const auto warned = [](const ScanCheck& s) {
+    for (const ScanWarning& w : s.warnings)
+      if (w.code == "topology") return true;
+    return false;
+  };
+  Encoding joined;
+  joined.control = dt::torus(96, 48, 1.0f, 0.35f);
+  const ScanCheck ok = check_scan(joined, index);
+  CHECK(ok.capped_rim_pairs == 0);
+  CHECK_FALSE(warned(ok));
+  // The band's ends capped: the tube bent into a C, closed at both ends
+  // (here: the torus's triangles outside the band, each end closed by a
+  // fan round a centre vertex).
+  Encoding capped;
+  TriangleMesh& m = capped.control;
+  const uint32_t rings = 96, sides = 48;
+  const TriangleMesh t = dt::torus(rings, sides, 1.0f, 0.35f);
+  m.positions = t.positions;
+  const uint32_t first = 6, last = rings - 6;  // the band: rings 91..5 round +x removed
+  for (uint32_t i = first; i < last; ++i)
+    for (uint32_t j = 0; j < sides; ++j) {
+      const auto id = [&](uint32_t a, uint32_t b) { return a * sides + b % sides; };
+      m.triangles.insert(m.triangles.end(), {id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+      m.triangles.insert(m.triangles.end(), {id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+    }
+  for (const uint32_t ring : {first, last}) {
+    const double u = 2 * std::numbers::pi * ring / rings;
+    const uint32_t centre = static_cast<uint32_t>(m.positions.size() / 3);
+    m.positions.insert(m.positions.end(), {static_cast<float>(std::cos(u)), static_cast<float>(std::sin(u)), 0.0f});
+    for (uint32_t j = 0; j < sides; ++j) {
+      const uint32_t a = ring * sides + j, b = ring * sides + (j + 1) % sides;
+      // Each cap takes its ring's boundary edges the other way round (the
+      // tube's triangles run a -> b along the last ring, b -> a along the
+      // first), so the closed C stays outward-oriented.
+      if (ring == first) m.triangles.insert(m.triangles.end(), {centre, a, b});
+      else m.triangles.insert(m.triangles.end(), {centre, b, a});
+    }
+  }
+  // Only the C's rings and the two centres: the band's vertices dropped.
+  {
+    std::vector<uint32_t> remap(m.positions.size() / 3, UINT32_MAX);
+    std::vector<float> kept;
+    for (uint32_t& v : m.triangles) {
+      if (remap[v] == UINT32_MAX) {
+        remap[v] = static_cast<uint32_t>(kept.size() / 3);
+        kept.insert(kept.end(), &m.positions[3 * v], &m.positions[3 * v] + 3);
+      }
+      v = remap[v];
+    }
+    m.positions = std::move(kept);
+  }
+  REQUIRE(mesh_info(m).closed);
+  REQUIRE(mesh_info(m).genus == 0);
+  const ScanCheck bad = check_scan(capped, index);
+  CHECK(bad.capped_rim_pairs == 1);
+  CHECK(warned(bad));
 }

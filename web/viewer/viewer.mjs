@@ -128,7 +128,9 @@ function open(url, upToLevel = null) {
   };
   worker.onerror = (e) => { state.error = { code: -1, codeName: 'worker', offset: -1, message: e.message }; state.done = true; $('status').textContent = e.message; };
   $('more').hidden = upToLevel == null;
-  worker.postMessage({ type: 'open', url: new URL(url, location.href).href, upToLevel, wasmUrl: new URL('../../build-web/dist/dbss_wasm.mjs', import.meta.url).href });
+  // No wasmUrl: the worker's loadModule() then probes for SIMD and loads
+  // the scalar module where the engine has none.
+  worker.postMessage({ type: 'open', url: new URL(url, location.href).href, upToLevel });
 }
 
 // --- controls -------------------------------------------------------------------

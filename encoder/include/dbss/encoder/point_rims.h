@@ -32,14 +32,14 @@ struct PointRim {
 
 // The closed rims of openings in the points: boundary points (a point whose
 // nearest neighbours, seen in its tangent plane, leave a wide empty sector)
-// linked into groups that run all the way round their centre.  At most
-// `max_points` points are examined (every ceil(n / max_points)-th in the
-// cloud's order), so the cost is bounded on any cloud; neighbours come from
-// every point.  Deterministic.
+// linked into groups that run most of the way round their centre.  A cloud
+// of more than `max_points` points is judged by every ceil(n / max_points)-th
+// of them (in the cloud's order) as a cloud of its own, so the cost is
+// bounded on any cloud.  Deterministic for a given point order.
 std::vector<PointRim> find_point_rims(const PointIndex& index, size_t max_points = size_t{1} << 16);
 
 // Pairs of rims (indices into `rims`) that look like a tube's two cut ends:
-// sizes within a factor of two, a gap under five times the larger radius,
+// sizes within a factor of two, a gap under six times the larger radius,
 // walls along the axes, and at least one rim facing the other across the
 // gap (as hole_bridge.h's doubtful pairs).
 std::vector<std::pair<size_t, size_t>> tube_end_pairs(const std::vector<PointRim>& rims);
