@@ -14,7 +14,7 @@ const char* const kEncodeOptionsHelp =
     "                         twice an open sheet's; at least 96 + 64 per\n"
     "                         handle, at most 4000; or a quarter of that when\n"
     "                         its bytes-against-error curve is better, up to\n"
-    "                         2^20 points: meta control.choice says which)\n"
+    "                         2^18 points: meta control.choice says which)\n"
     "  --control-bits B       Draco position bits of the control mesh, 8..30\n"
     "                         (default: from the step, about half a step of rounding)\n"
     "  --levels L             subdivision levels with displacements, 0..8, or\n"

@@ -40,7 +40,7 @@ struct EncodeOptions {
   int control_bits = 0;  // Draco position bits of the control mesh, 8..30; 0: from the step (control_bits_for_step)
   // With control.control_faces 0: also encode over a quarter of the default
   // faces and keep the better rate-distortion curve (encode.cpp,
-  // choose_control; not above 2^20 points, where the second candidate
+  // choose_control; not above 2^18 points, where the second candidate
   // would cost about a whole encoding); false: the default face count, as
   // before issue 15.
   bool choose_control = true;
