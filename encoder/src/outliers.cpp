@@ -1,5 +1,6 @@
 #include "dbss/encoder/outliers.h"
 #include "split_ranges.h"
+#include "union_find.h"
 
 #include <Eigen/Dense>
 
@@ -15,20 +16,6 @@
 namespace dbss {
 
 namespace {
-
-// Union-find with path halving; ids stay below 2^32 (point counts do).
-struct Sets {
-  std::vector<uint32_t> parent;
-  explicit Sets(size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0u); }
-  uint32_t find(uint32_t x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  }
-  void join(uint32_t a, uint32_t b) {
-    a = find(a), b = find(b);
-    if (a != b) parent[std::max(a, b)] = std::min(a, b);
-  }
-};
 
 // The median of v, reordering v (which keeps the same values): the
 // per-point passes call it on their own scratch buffers, a copy (and an

@@ -1,4 +1,5 @@
 #include "dbss/encoder/point_rims.h"
+#include "union_find.h"
 
 #include <algorithm>
 #include <cmath>
@@ -58,19 +59,6 @@ std::pair<V3, V3> tangents(V3 n) {
   const V3 e1 = unit(cross(n, helper));
   return {e1, cross(n, e1)};
 }
-
-struct Sets {
-  std::vector<uint32_t> parent;
-  explicit Sets(size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0u); }
-  uint32_t find(uint32_t x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  }
-  void join(uint32_t a, uint32_t b) {
-    a = find(a), b = find(b);
-    if (a != b) parent[std::max(a, b)] = std::min(a, b);
-  }
-};
 
 }  // namespace
 
