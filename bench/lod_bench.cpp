@@ -5,7 +5,7 @@
 // bounding-box diagonal (measure/mesh_distance).  Also: dbss's QEM against
 // meshoptimizer's simplifier for the control mesh.
 //
-//   lod_bench [--levels N] [--control-faces F] [--control-bits B] [--cut-holes H] [--errors E1,E2,..] [--samples N] [--detail] [--quick] [--no-search] [--skip-absent] MESH...
+//   lod_bench [--levels N] [--control-faces F] [--control-bits B] [--cut-holes H] [--errors E1,E2,..] [--samples N] [--detail] [--quick] [--no-search] [--dense-step-ratio R] [--skip-absent] MESH...
 //
 // With no MESH: the libcgal-demo meshes under test-data/ (closed, with
 // holes, several components); --cut-holes H adds each mesh again with H
@@ -54,6 +54,7 @@ struct Args {
   bool detail = false;  // --detail: where each level's bytes and error go
   bool quick = false;   // --quick: no simplifier comparison, no decode timing (for sweeps)
   bool no_search = false;  // --no-search: the equal-error table on the targets' grid only
+  double dense_step_ratio = kMeshDenseStepRatio;  // --dense-step-ratio R (1: one step for every level)
   uint32_t cut_holes = 0;  // also run each closed mesh with this many holes cut in it
   std::vector<std::string> meshes;
 };
@@ -263,7 +264,7 @@ class TargetCurve {
     o.control_bits = args_.control_bits;
     o.error = target;
     o.threads = 2;
-    auto e = encode_mesh(input_, o);
+    auto e = encode_mesh(input_, o, {args_.dense_step_ratio});
     if (!e.ok()) return false;
     const Encoding& en = e.value().encoding;
     Point p;
@@ -359,7 +360,7 @@ int run_mesh(const std::string& path, const Args& args, uint32_t holes = 0) {
     o.error = err;
     o.threads = 2;
     auto t = Clock::now();
-    auto e = encode_mesh(input, o);
+    auto e = encode_mesh(input, o, {args.dense_step_ratio});
     const double enc_s = since(t);
     if (!e.ok()) {
       std::fprintf(stderr, "lod_bench: %s: %s\n", path.c_str(), e.status().to_string().c_str());
@@ -475,6 +476,7 @@ int main(int argc, char** argv) {
     else if (a == "--detail") args.detail = true;
     else if (a == "--quick") args.quick = true;
     else if (a == "--no-search") args.no_search = true;
+    else if (a == "--dense-step-ratio" && i + 1 < argc) args.dense_step_ratio = std::atof(argv[++i]);
     else if (a == "--errors" && i + 1 < argc) {
       args.errors.clear();
       std::string s = argv[++i];
@@ -485,7 +487,7 @@ int main(int argc, char** argv) {
       }
     } else if (a == "--skip-absent") args.skip_absent = true;
     else if (!a.empty() && a[0] == '-') {
-      std::fprintf(stderr, "usage: lod_bench [--levels N] [--control-faces F] [--control-bits B] [--cut-holes H] [--errors E1,E2] [--samples N] [--detail] [--quick] [--no-search] [--skip-absent] MESH...\n");
+      std::fprintf(stderr, "usage: lod_bench [--levels N] [--control-faces F] [--control-bits B] [--cut-holes H] [--errors E1,E2] [--samples N] [--detail] [--quick] [--no-search] [--dense-step-ratio R] [--skip-absent] MESH...\n");
       return 1;
     } else args.meshes.push_back(a);
   }
