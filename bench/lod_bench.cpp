@@ -5,7 +5,7 @@
 // bounding-box diagonal (measure/mesh_distance).  Also: dbss's QEM against
 // meshoptimizer's simplifier for the control mesh.
 //
-//   lod_bench [--levels N] [--control-faces F] [--control-bits B] [--cut-holes H] [--errors E1,E2,..] [--samples N] [--detail] [--quick] [--skip-absent] MESH...
+//   lod_bench [--levels N] [--control-faces F] [--control-bits B] [--cut-holes H] [--errors E1,E2,..] [--samples N] [--detail] [--quick] [--no-search] [--dense-step-ratio R] [--skip-absent] MESH...
 //
 // With no MESH: the libcgal-demo meshes under test-data/ (closed, with
 // holes, several components); --cut-holes H adds each mesh again with H
@@ -18,6 +18,8 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -51,6 +53,8 @@ struct Args {
   bool skip_absent = false;
   bool detail = false;  // --detail: where each level's bytes and error go
   bool quick = false;   // --quick: no simplifier comparison, no decode timing (for sweeps)
+  bool no_search = false;  // --no-search: the equal-error table on the targets' grid only
+  double dense_step_ratio = kMeshDenseStepRatio;  // --dense-step-ratio R (1: one step for every level)
   uint32_t cut_holes = 0;  // also run each closed mesh with this many holes cut in it
   std::vector<std::string> meshes;
 };
@@ -148,6 +152,142 @@ void print_detail(const Encoding& en, const TriangleMesh& input, double diag, co
   }
 }
 
+// The search stops once a level's error is within this share under the
+// Draco error it is matched against (or the targets bracketing it are this
+// close).
+constexpr double kSearchTolerance = 0.02;
+
+// dbss's (prefix bytes, error) per level as a function of the error target,
+// encoded on demand and remembered: the equal-error search bisects it.
+class TargetCurve {
+ public:
+  struct Point {
+    std::vector<uint64_t> prefix;  // per level
+    std::vector<double> error;     // per level, over the diagonal
+  };
+  struct Found {
+    double target;
+    uint32_t level;
+    uint64_t prefix;
+    double error;
+  };
+
+  TargetCurve(const TriangleMesh& input, const Args& args, double diag, const MeshDistanceOptions& mo)
+      : input_(input), args_(args), diag_(diag), mo_(mo) {}
+
+  // A level measured elsewhere (the grid's encodings).
+  void seed(double target, uint32_t level, uint64_t prefix, double error) {
+    Point& p = points_[target];
+    if (p.prefix.size() <= level) p.prefix.resize(level + 1, 0), p.error.resize(level + 1, 0);
+    p.prefix[level] = prefix;
+    p.error[level] = error;
+  }
+
+  // The smallest prefix over all levels whose error is at most `want`,
+  // each level's target bisected (in log target) until its error is within
+  // kSearchTolerance under `want`; none when no level reaches it.
+  std::optional<Found> smallest_prefix_at(double want) {
+    std::optional<Found> best;
+    for (uint32_t l = 0; l <= args_.levels; ++l) {
+      // Levels whose error does not depend on the target (the control
+      // mesh's rounding aside) still count: level 0 is read off as is.
+      double lo = 0, hi = 0;  // lo: largest target with error <= want; hi: smallest above lo with error > want
+      for (int it = 0; it < 24; ++it) {
+        bracket(l, want, lo, hi);
+        if (lo > 0 && best && hi > 0 && points_[hi].prefix[l] >= best->prefix) break;  // cannot beat it
+        double next = 0;
+        if (lo == 0) {
+          // Nothing reaches `want` yet: finer, down to a target an eighth
+          // of it (below that the level's floor is not the rounding).
+          const double finest = points_.begin()->first;
+          if (finest / 2 < want / 8) break;
+          next = finest / 2;
+          // A level that did not improve between the two finest targets has hit its floor.
+          if (points_.size() >= 2) {
+            auto a = points_.begin(), b = std::next(a);
+            if (a->second.error.size() > l && b->second.error.size() > l && a->second.error[l] > want &&
+                a->second.error[l] >= 0.97 * b->second.error[l])
+              break;
+          }
+        } else if (hi == 0) {
+          // Everything measured reaches it: coarser, up to 16 times `want`.
+          const double coarsest = points_.rbegin()->first;
+          if (coarsest * 2 > 16 * want) break;
+          next = coarsest * 2;
+        } else {
+          const double elo = points_[lo].error[l], ehi = points_[hi].error[l];
+          if (elo >= (1 - kSearchTolerance) * want || hi / lo < 1 + kSearchTolerance) break;
+          // Log-log interpolation of the error between the bracket, kept
+          // off its ends so a bend in the curve cannot stall the search.
+          double f = 0.5;
+          if (elo > 0 && ehi > elo) f = std::clamp(std::log(want / elo) / std::log(ehi / elo), 0.2, 0.8);
+          next = lo * std::pow(hi / lo, f);
+        }
+        if (!measure(next)) break;
+      }
+      bracket(l, want, lo, hi);
+      if (lo == 0) continue;
+      const Point& p = points_[lo];
+      if (!best || p.prefix[l] < best->prefix) best = Found{lo, l, p.prefix[l], p.error[l]};
+    }
+    return best;
+  }
+
+  size_t encodings() const { return encodings_; }
+  double seconds() const { return seconds_; }
+
+ private:
+  // Targets measured at level l (every level up to args_.levels once encoded here).
+  void bracket(uint32_t l, double want, double& lo, double& hi) {
+    lo = hi = 0;
+    for (const auto& [t, p] : points_) {
+      if (p.error.size() <= l || p.prefix[l] == 0) continue;
+      if (p.error[l] <= want) lo = t;
+    }
+    for (const auto& [t, p] : points_) {
+      if (p.error.size() <= l || p.prefix[l] == 0) continue;
+      if (t > lo && p.error[l] > want) {
+        hi = t;
+        break;
+      }
+    }
+  }
+
+  bool measure(double target) {
+    if (auto it = points_.find(target); it != points_.end() && it->second.prefix.size() == args_.levels + 1 &&
+                                        std::find(it->second.prefix.begin(), it->second.prefix.end(), 0) == it->second.prefix.end())
+      return false;  // already known: the search is not moving
+    const auto t0 = Clock::now();
+    EncodeOptions o;
+    o.levels = args_.levels;
+    o.control.control_faces = args_.control_faces;
+    o.control_bits = args_.control_bits;
+    o.error = target;
+    o.threads = 2;
+    auto e = encode_mesh(input_, o, {args_.dense_step_ratio});
+    if (!e.ok()) return false;
+    const Encoding& en = e.value().encoding;
+    Point p;
+    for (uint32_t l = 0; l <= en.level_count; ++l) {
+      const TriangleMesh m{en.levels.positions[l], en.levels.triangles[l]};
+      p.prefix.push_back(prefix_bytes(en, l));
+      p.error.push_back(mesh_distance(m, input_, mo_).mean() / diag_);
+    }
+    points_[target] = std::move(p);
+    ++encodings_;
+    seconds_ += since(t0);
+    return true;
+  }
+
+  const TriangleMesh& input_;
+  const Args& args_;
+  double diag_;
+  MeshDistanceOptions mo_;
+  std::map<double, Point> points_;
+  size_t encodings_ = 0;
+  double seconds_ = 0;
+};
+
 int run_mesh(const std::string& path, const Args& args, uint32_t holes = 0) {
   auto read = read_mesh(path);
   if (!read.ok()) {
@@ -220,7 +360,7 @@ int run_mesh(const std::string& path, const Args& args, uint32_t holes = 0) {
     o.error = err;
     o.threads = 2;
     auto t = Clock::now();
-    auto e = encode_mesh(input, o);
+    auto e = encode_mesh(input, o, {args.dense_step_ratio});
     const double enc_s = since(t);
     if (!e.ok()) {
       std::fprintf(stderr, "lod_bench: %s: %s\n", path.c_str(), e.status().to_string().c_str());
@@ -242,10 +382,15 @@ int run_mesh(const std::string& path, const Args& args, uint32_t holes = 0) {
     encodings.push_back(std::move(e).value());
   }
 
-  // Equal error: the smallest dbss prefix at or under each Draco error.
-  std::printf("\nequal error (smallest dbss prefix with error <= Draco's):\n\n");
+  // Equal error on the error targets' grid: the smallest dbss prefix at or
+  // under each Draco error among the targets given.  Kept beside the search
+  // below, which it overstates (a sparse grid lands under Draco's error by
+  // up to a grid step).
+  std::vector<double> grid_ratio(dr.size(), 0);
+  std::printf("\nequal error on the grid of targets (smallest dbss prefix with error <= Draco's):\n\n");
   std::printf("| Draco qp | Draco bytes | Draco error | dbss prefix | its error | (target, level) | dbss / Draco |\n|---|---|---|---|---|---|---|\n");
-  for (const DracoResult& d : dr) {
+  for (size_t k = 0; k < dr.size(); ++k) {
+    const DracoResult& d = dr[k];
     const Row* best = nullptr;
     for (const Row& r : rows)
       if (r.error <= d.error && (!best || r.prefix < best->prefix)) best = &r;
@@ -253,9 +398,35 @@ int run_mesh(const std::string& path, const Args& args, uint32_t holes = 0) {
       std::printf("| %d | %zu | %.2e | - | - | - | not reached |\n", d.qp, d.bytes, d.error);
       continue;
     }
+    grid_ratio[k] = double(best->prefix) / d.bytes;
     std::printf("| %d | %zu | %.2e | %llu | %.2e | (%g, %u) | %.2f |\n", d.qp, d.bytes, d.error,
-                static_cast<unsigned long long>(best->prefix), best->error, best->target, best->level,
-                double(best->prefix) / d.bytes);
+                static_cast<unsigned long long>(best->prefix), best->error, best->target, best->level, grid_ratio[k]);
+  }
+
+  // Equal error by search: per Draco qp and per level, the error target is
+  // bisected until that level's error lands just under Draco's.
+  if (!args.no_search) {
+    TargetCurve curve(input, args, diag, mo);
+    for (const Row& r : rows) curve.seed(r.target, r.level, r.prefix, r.error);
+    std::printf("\nequal error by search (per qp and level, the error target bisected until the level's error is within %.0f%% under Draco's):\n\n",
+                100 * kSearchTolerance);
+    std::printf("| Draco qp | Draco bytes | Draco error | dbss prefix | its error | (target, level) | dbss / Draco | on the grid |\n"
+                "|---|---|---|---|---|---|---|---|\n");
+    for (size_t k = 0; k < dr.size(); ++k) {
+      const DracoResult& d = dr[k];
+      const char* grid = nullptr;
+      char grid_text[32];
+      if (grid_ratio[k] > 0) std::snprintf(grid_text, sizeof grid_text, "%.2f", grid_ratio[k]), grid = grid_text;
+      const auto best = curve.smallest_prefix_at(d.error);
+      if (!best) {
+        std::printf("| %d | %zu | %.2e | - | - | - | not reached | %s |\n", d.qp, d.bytes, d.error, grid ? grid : "not reached");
+        continue;
+      }
+      std::printf("| %d | %zu | %.2e | %llu | %.2e | (%.3g, %u) | %.2f | %s |\n", d.qp, d.bytes, d.error,
+                  static_cast<unsigned long long>(best->prefix), best->error, best->target, best->level,
+                  double(best->prefix) / d.bytes, grid ? grid : "not reached");
+    }
+    std::printf("\nsearch: %zu encodings, %.1f s encoding and measuring\n", curve.encodings(), curve.seconds());
   }
 
   // One .dbss (the first error target) against a meshoptimizer LOD chain of
@@ -304,6 +475,8 @@ int main(int argc, char** argv) {
     else if (a == "--control-bits" && i + 1 < argc) args.control_bits = std::atoi(argv[++i]);
     else if (a == "--detail") args.detail = true;
     else if (a == "--quick") args.quick = true;
+    else if (a == "--no-search") args.no_search = true;
+    else if (a == "--dense-step-ratio" && i + 1 < argc) args.dense_step_ratio = std::atof(argv[++i]);
     else if (a == "--errors" && i + 1 < argc) {
       args.errors.clear();
       std::string s = argv[++i];
@@ -314,7 +487,7 @@ int main(int argc, char** argv) {
       }
     } else if (a == "--skip-absent") args.skip_absent = true;
     else if (!a.empty() && a[0] == '-') {
-      std::fprintf(stderr, "usage: lod_bench [--levels N] [--control-faces F] [--control-bits B] [--cut-holes H] [--errors E1,E2] [--samples N] [--detail] [--quick] [--skip-absent] MESH...\n");
+      std::fprintf(stderr, "usage: lod_bench [--levels N] [--control-faces F] [--control-bits B] [--cut-holes H] [--errors E1,E2] [--samples N] [--detail] [--quick] [--no-search] [--dense-step-ratio R] [--skip-absent] MESH...\n");
       return 1;
     } else args.meshes.push_back(a);
   }

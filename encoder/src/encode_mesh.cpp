@@ -20,11 +20,24 @@ using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 }  // namespace
 
-Result<MeshEncoding> encode_mesh(const TriangleMesh& mesh, const EncodeOptions& o) {
+std::vector<uint64_t> level_vertex_counts(uint64_t vertices, uint64_t edges, uint64_t triangles, uint32_t levels) {
+  std::vector<uint64_t> r{vertices};
+  for (uint32_t l = 0; l < levels; ++l) {
+    vertices += edges;
+    edges = 2 * edges + 3 * triangles;
+    triangles *= 4;
+    r.push_back(vertices);
+  }
+  return r;
+}
+
+Result<MeshEncoding> encode_mesh(const TriangleMesh& mesh, const EncodeOptions& o, const MeshEncodeOptions& mo) {
   if (o.control_bits != 0 && (o.control_bits < 8 || o.control_bits > 30))
     return Status(ErrorCode::invalid_argument, "control bits must be 8..30, or 0 to derive them from the step");
   if (o.levels > format::kMaxLevelsInFormat && o.levels != kAutoLevels)
     return Status(ErrorCode::invalid_argument, "too many levels");
+  if (!(mo.dense_step_ratio >= 1) || !std::isfinite(mo.dense_step_ratio))
+    return Status(ErrorCode::invalid_argument, "the dense levels' step ratio must be finite and at least 1");
   MeshEncoding me;
   Encoding& e = me.encoding;
   auto t = Clock::now();
@@ -96,6 +109,16 @@ Result<MeshEncoding> encode_mesh(const TriangleMesh& mesh, const EncodeOptions& 
   sampler.sample = [&](uint32_t odd, const double p[3], const double n[3], double half_length) {
     return surface.sample(p, n, half_length, odd < rim.size() && rim[odd]);
   };
+  // With a level past the input's density, the levels up to it round
+  // finer than the error target's step (mesh_level_step).
+  const std::vector<uint64_t> vertices = level_vertex_counts(
+      c.header.control_vertex_count, c.header.control_edge_count, c.header.control_triangle_count, e.level_count);
+  const uint64_t finest = vertices.back(), input_vertices = in.vertex_count();
+  const float target_step = e.step;
+  const double ratio = mo.dense_step_ratio;
+  sampler.step = [=](uint32_t, size_t odd, size_t even) {
+    return mesh_level_step(target_step, odd + even, finest, input_vertices, ratio);
+  };
   LevelEncodeOptions lo;
   lo.levels = e.level_count;
   lo.step = e.step;
@@ -116,10 +139,20 @@ Result<MeshEncoding> encode_mesh(const TriangleMesh& mesh, const EncodeOptions& 
   c.header.version_minor = format::minimum_version_minor(c);
   char error_text[32];
   std::snprintf(error_text, sizeof error_text, "%g", e.error);
-  const std::string params = "input=mesh control-faces=" + std::to_string(e.control.triangle_count()) +
-                             " control-bits=" + std::to_string(e.control_bits) + " levels=" + std::to_string(e.level_count) +
-                             (o.levels == kAutoLevels ? " (auto)" : "") + " error=" + error_text +
-                             " effort=" + std::to_string(o.effort);
+  std::string params = "input=mesh control-faces=" + std::to_string(e.control.triangle_count()) +
+                       " control-bits=" + std::to_string(e.control_bits) + " levels=" + std::to_string(e.level_count) +
+                       (o.levels == kAutoLevels ? " (auto)" : "") + " error=" + error_text +
+                       " effort=" + std::to_string(o.effort);
+  // Which levels rounded finer than the target's step, so the file says so.
+  {
+    uint32_t finer = 0;
+    for (const format::Level& level : c.levels) finer += level.step < e.step;
+    if (finer) {
+      char ratio_text[32];
+      std::snprintf(ratio_text, sizeof ratio_text, "%g", mo.dense_step_ratio);
+      params += " dense-levels=" + std::to_string(finer) + " dense-step-ratio=" + ratio_text;
+    }
+  }
   c.metadata = {{"encoder", "dbss " + (o.encoder_version.empty() ? std::string("unknown") : o.encoder_version)},
                 {"encoder.params", params}};
   if (!o.source_name.empty()) c.metadata.push_back({"source", o.source_name});

@@ -87,8 +87,7 @@ Result<EncodedLevels> encode_levels(const TriangleMesh& control, const PointInde
 
 Result<EncodedLevels> encode_levels(const TriangleMesh& control, const LevelSampler& sampler,
                                     const LevelEncodeOptions& o) {
-  const float step = o.step;
-  if (!(step > 0) || !std::isfinite(step)) return Status(ErrorCode::invalid_argument, "the step must be finite and positive");
+  if (!(o.step > 0) || !std::isfinite(o.step)) return Status(ErrorCode::invalid_argument, "the step must be finite and positive");
   if (!sampler.sample) return Status(ErrorCode::invalid_argument, "no displacement sampler");
   auto refiner = LevelRefiner::create(control, o.creases);
   if (!refiner.ok()) return refiner.status();
@@ -101,7 +100,10 @@ Result<EncodedLevels> encode_levels(const TriangleMesh& control, const LevelSamp
     if (sampler.begin_level) sampler.begin_level(l, r.positions(), r.triangles());
     // Per odd vertex, written by whichever thread samples it, summed after.
     const size_t odd = static_cast<size_t>(r.next_odd_count());
-    const double dead_zone = sampler.dead_zone ? sampler.dead_zone(odd, r.positions().size() / 3) : 0.5;
+    const size_t even = r.positions().size() / 3;
+    const double dead_zone = sampler.dead_zone ? sampler.dead_zone(odd, even) : 0.5;
+    const float step = sampler.step ? sampler.step(l, odd, even) : o.step;
+    if (!(step > 0) || !std::isfinite(step)) return Status(ErrorCode::invalid_argument, "a level's step must be finite and positive");
     std::vector<uint8_t> source(odd, 0xFF), clamped(odd, 0), fitted(odd, 0);
     std::vector<double> magnitude(odd, 0.0);
     // The decoder's own step: it computes each odd vertex's undisplaced

@@ -233,3 +233,58 @@ TEST_CASE("mesh input: libcgal-demo meshes keep their topology", "[mesh_input][d
     check_encoding(prepared.value(), 3, 2e-3);
   }
 }
+
+TEST_CASE("mesh input: levels up to the input's density round finer, the rest to the target's step, and decode as encoded", "[mesh_input]") {
+  const TriangleMesh input = test::uv_sphere(40, 60);
+  EncodeOptions o;
+  o.levels = 3;
+  o.error = 1e-4;
+  auto r = encode_mesh(input, o);
+  REQUIRE(r.ok());
+  const Encoding& e = r.value().encoding;
+  const size_t input_vertices = r.value().input.vertex_count();
+  REQUIRE(e.contents.levels.size() == 3);
+  // The counts the encoder predicts before sampling are the levels' own.
+  const auto& h = e.contents.header;
+  const std::vector<uint64_t> counts =
+      level_vertex_counts(h.control_vertex_count, h.control_edge_count, h.control_triangle_count, 3);
+  REQUIRE(counts.size() == 4);
+  for (uint32_t l = 0; l <= 3; ++l) CHECK(counts[l] == e.levels.positions[l].size() / 3);
+  size_t dense = 0, fine = 0;
+  for (uint32_t l = 1; l <= 3; ++l) {
+    const size_t vertices = e.levels.positions[l].size() / 3;
+    const float want = vertices > input_vertices ? e.step : static_cast<float>(e.step / kMeshDenseStepRatio);
+    INFO("level " << l << ", " << vertices << " vertices against the input's " << input_vertices);
+    CHECK(e.contents.levels[l - 1].step == want);
+    // No level rounds coarser than the error target allows.
+    CHECK(e.contents.levels[l - 1].step <= e.step);
+    (vertices > input_vertices ? fine : dense) += 1;
+  }
+  // Both kinds of level, so both steps are exercised.
+  REQUIRE(dense >= 1);
+  REQUIRE(fine >= 1);
+  // The header's error target is the one asked for: it bounds every level.
+  CHECK(e.contents.header.error_target == static_cast<float>(o.error));
+  // A decoder follows each level's own step: every level bit for bit.
+  for (int l = 0; l <= 3; ++l) {
+    auto d = decode_bytes(e.bytes, l);
+    REQUIRE(d.ok());
+    INFO("level " << l);
+    CHECK(d.value().positions == e.levels.positions[static_cast<size_t>(l)]);
+  }
+  // With no level past the input's density, every level rounds to the
+  // target's step; so does every level with the ratio 1.
+  o.levels = 1;
+  auto one = encode_mesh(input, o);
+  REQUIRE(one.ok());
+  REQUIRE(one.value().encoding.levels.positions[1].size() / 3 <= input_vertices);
+  CHECK(one.value().encoding.contents.levels[0].step == one.value().encoding.step);
+  o.levels = 3;
+  MeshEncodeOptions same;
+  same.dense_step_ratio = 1;
+  auto flat = encode_mesh(input, o, same);
+  REQUIRE(flat.ok());
+  for (const format::Level& level : flat.value().encoding.contents.levels) CHECK(level.step == flat.value().encoding.step);
+  same.dense_step_ratio = 0.5;
+  CHECK(encode_mesh(input, o, same).status().code() == ErrorCode::invalid_argument);
+}

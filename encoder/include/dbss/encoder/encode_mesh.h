@@ -3,6 +3,9 @@
 // control mesh, closed-loop levels and container as encode_points().
 #pragma once
 
+#include <cstdint>
+#include <vector>
+
 #include "dbss/decoder/mesh.h"
 #include "dbss/encoder/encode.h"
 #include "dbss/encoder/mesh_info.h"
@@ -20,14 +23,48 @@ struct MeshEncoding {
   MeshControlStats control_stats;
 };
 
+// Levels up to the input mesh's vertex density add shape; a level past it
+// only re-expresses the input's facets, and each of its vertices covers
+// less of the surface.  So when an encoding has a level past the density,
+// the levels up to it are quantized this many times finer than the levels
+// past it.  The error target keeps its meaning: the levels past the
+// density round to its step (2 x error x diagonal), the others finer.
+// Measured with bench/lod_bench's equal-error search (bytes at exactly
+// Draco's error): see bench/lod_bench.md, "Issue 18: finer steps up to the
+// input's density".
+inline constexpr double kMeshDenseStepRatio = 1.5;
+
+struct MeshEncodeOptions {
+  // kMeshDenseStepRatio; 1: one step for every level.
+  double dense_step_ratio = kMeshDenseStepRatio;
+};
+
+// The vertex counts of levels 0..levels of a control mesh of `vertices`,
+// `edges` and `triangles` (a 1-to-4 split: every edge gains a vertex and
+// becomes two edges, every triangle gains three edges).
+std::vector<uint64_t> level_vertex_counts(uint64_t vertices, uint64_t edges, uint64_t triangles, uint32_t levels);
+
+// The quantization step of a level of `level_vertices` vertices in an
+// encoding whose finest level has `finest_vertices`, from an input of
+// `input_vertices`: `step` (the error target's) past the input's density,
+// and also for every level when no level goes past it; `step / ratio` for
+// the levels up to the density otherwise.
+inline float mesh_level_step(float step, uint64_t level_vertices, uint64_t finest_vertices, uint64_t input_vertices,
+                             double ratio = kMeshDenseStepRatio) {
+  const bool finer = finest_vertices > input_vertices && level_vertices <= input_vertices && ratio > 1;
+  return finer ? static_cast<float>(step / ratio) : step;
+}
+
 // Encodes `mesh` (any triangle mesh: it is prepared first).  Of `options`,
 // outlier removal and the surface/grid/shaping choices of points do not
 // apply; control.control_faces (0: default_control_faces of the input's
 // triangles and genus), control_bits, levels (kAutoLevels: up to the first
 // level with more vertices than the input), error/step, effort, threads and
-// the names do.  Errors: invalid_argument for a mesh that is not an
+// the names do; levels up to the input's density are quantized finer
+// (mesh_level_step, `mesh_options`).  Errors: invalid_argument for a mesh that is not an
 // oriented manifold (naming the first offending edge or vertex) or bad
 // options; internal for a stage that broke the topology (a bug).
-Result<MeshEncoding> encode_mesh(const TriangleMesh& mesh, const EncodeOptions& options = {});
+Result<MeshEncoding> encode_mesh(const TriangleMesh& mesh, const EncodeOptions& options = {},
+                                 const MeshEncodeOptions& mesh_options = {});
 
 }  // namespace dbss

@@ -73,6 +73,10 @@ struct LevelSampler {
   // a level of `even` vertices; empty: plain rounding (0.5).  Infinite: the
   // level stores only zeros and its vertices are not sampled.
   std::function<double(size_t odd, size_t even)> dead_zone;
+  // The quantization step of level l (> 0, finite; the file stores one per
+  // level) for `odd` samples refining `even` vertices; empty: the options'
+  // step at every level.
+  std::function<float(uint32_t level, size_t odd, size_t even)> step;
 };
 
 // `control` must be the Draco-decoded control mesh.  Displacements from
