@@ -61,7 +61,10 @@ CellGrid make_grid(const PointCloud& pc, int grid) {
 template <class Passable>
 std::vector<uint8_t> flood_from_border(const CellGrid& g, Passable passable) {
   std::vector<uint8_t> seen(g.state.size(), 0);
+  // Reserved whole: a flood reaches most of the grid, and growing the queue
+  // by doubling copied it over and over (a tenth of the carving's time).
   std::vector<uint32_t> queue;
+  queue.reserve(g.state.size());
   const int nx = g.n[0], ny = g.n[1], nz = g.n[2];
   const auto border = [&](int i, int j, int k) { return i == 0 || j == 0 || k == 0 || i == nx - 1 || j == ny - 1 || k == nz - 1; };
   // An inner cell next to the border: seen (and queued) if passable.
@@ -141,25 +144,34 @@ void carve_closed(CellGrid& g) {
             for (int dj = -1; dj <= 1; ++dj)
               for (int di = -1; di <= 1; ++di) grown.state[grown.index(i + di, j + dj, k + dk)] = CellGrid::kOccupied;
   carve_from_outside(grown);
-  for (int k = 0; k < g.n[2]; ++k)
-    for (int j = 0; j < g.n[1]; ++j)
-      for (int i = 0; i < g.n[0]; ++i) {
-        const size_t id = g.index(i, j, k);
-        if (g.state[id] == CellGrid::kOccupied) continue;
-        if (grown.state[id] == CellGrid::kAir) {
-          g.state[id] = CellGrid::kAir;
-          continue;
+  // Which cells have the grown carving's air among their 26 neighbours (or
+  // are air themselves): a 3x3x3 box dilation of the air, done one axis at
+  // a time (three reads per cell instead of up to 27).
+  const int nx = g.n[0], ny = g.n[1], nz = g.n[2];
+  const size_t sy = size_t(nx), sz = size_t(nx) * ny;
+  std::vector<uint8_t> near_air(grown.state.size()), along(grown.state.size());
+  for (size_t id = 0; id < grown.state.size(); ++id) near_air[id] = grown.state[id] == CellGrid::kAir;
+  // Along one axis (its stride, its number); the loops give each cell's
+  // coordinate on that axis without a division.
+  const auto dilate = [&](size_t stride, int axis) {
+    for (int k = 0; k < nz; ++k)
+      for (int j = 0; j < ny; ++j) {
+        const size_t row = size_t(k) * sz + size_t(j) * sy;
+        for (int i = 0; i < nx; ++i) {
+          const size_t id = row + size_t(i);
+          const int c = axis == 0 ? i : axis == 1 ? j : k;
+          along[id] = near_air[id] | (c > 0 ? near_air[id - stride] : 0) | (c + 1 < g.n[axis] ? near_air[id + stride] : 0);
         }
-        bool touches_air = false;
-        for (int dk = -1; dk <= 1 && !touches_air; ++dk)
-          for (int dj = -1; dj <= 1 && !touches_air; ++dj)
-            for (int di = -1; di <= 1 && !touches_air; ++di) {
-              const int x = i + di, y = j + dj, z = k + dk;
-              if (x >= 0 && y >= 0 && z >= 0 && x < g.n[0] && y < g.n[1] && z < g.n[2])
-                touches_air = grown.state[grown.index(x, y, z)] == CellGrid::kAir;
-            }
-        g.state[id] = touches_air ? CellGrid::kAir : CellGrid::kInside;
       }
+    near_air.swap(along);
+  };
+  dilate(1, 0);
+  dilate(sy, 1);
+  dilate(sz, 2);
+  for (size_t id = 0; id < g.state.size(); ++id) {
+    if (g.state[id] == CellGrid::kOccupied) continue;
+    g.state[id] = near_air[id] ? CellGrid::kAir : CellGrid::kInside;
+  }
   enclose_pockets(g);
 }
 
