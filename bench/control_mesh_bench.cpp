@@ -10,7 +10,7 @@
 // (all threads summed, so a run on a loaded machine still reads as one
 // core's work) next to the wall-clock stage times.
 //
-// usage: control_mesh_bench [--no-shapes] [--no-peers] [POINT_FILE...]
+// usage: control_mesh_bench [--no-shapes] [--no-peers] [--hash] [POINT_FILE...]
 // (--no-peers: neither OpenMesh nor CGAL, for profiling our stages alone)
 #include <chrono>
 #include <ctime>
@@ -38,6 +38,7 @@
 namespace {
 using Clock = std::chrono::steady_clock;
 bool g_peers = true;
+bool g_hash = false;  // --hash: print a hash of each control mesh
 
 double cpu_seconds() {
   timespec t{};
@@ -120,6 +121,17 @@ void run(const std::string& name, const dbss::PointCloud& pc, int want_component
               s.cpu_seconds.shrink_wrap * 1e3, s.wrap_stats.iterations, s.cpu_seconds.simplify * 1e3, s.cpu_seconds.shape * 1e3,
               s.cpu_seconds.project * 1e3, total, om, om_faces,
               om > 0 ? om / (s.cpu_seconds.simplify * 1e3) : 0.0);
+  if (g_hash) {
+    // FNV-1a over the control mesh's floats and indices: equal hashes before
+    // and after a speed change show the output did not move.
+    uint64_t h = 1469598103934665603ull;
+    const auto mix = [&](const void* data, size_t bytes) {
+      for (size_t i = 0; i < bytes; ++i) h = (h ^ static_cast<const unsigned char*>(data)[i]) * 1099511628211ull;
+    };
+    mix(s.control.positions.data(), s.control.positions.size() * sizeof(float));
+    mix(s.control.triangles.data(), s.control.triangles.size() * sizeof(uint32_t));
+    std::printf("%-16s control mesh hash %016llx\n", name.c_str(), static_cast<unsigned long long>(h));
+  }
   if (peer && g_peers) {
     size_t af_faces = 0;
     const double af = advancing_front_ms(pc, af_faces);
@@ -146,6 +158,7 @@ int main(int argc, char** argv) {
   for (int i = 1; i < argc; ++i) {
     if (std::string(argv[i]) == "--no-shapes") shapes = false;
     else if (std::string(argv[i]) == "--no-peers") g_peers = false;
+    else if (std::string(argv[i]) == "--hash") g_hash = true;
     else files.push_back(argv[i]);
   }
   if (files.empty() && shapes) {

@@ -15,20 +15,24 @@ bool move_keeps_orientation(const TriangleMesh& m, const Adjacency& vt, uint32_t
   // Each triangle around v must keep facing within 90 degrees of where it
   // faced and of the fan's mean normal; the second test stops a triangle
   // from turning over a little at a time across iterations.
+  // The fan's normals are kept for the test below (the same products it
+  // computed a second time), for fans of up to kKept triangles.
+  constexpr uint32_t kKept = 32;
+  V3 kept[kKept];
   V3 fan{0, 0, 0};
   for (uint32_t i = vt.offset[v]; i < vt.offset[v + 1]; ++i) {
     const V3 n = face_normal(m, vt.index[i]);
+    if (i - vt.offset[v] < kKept) kept[i - vt.offset[v]] = n;
     for (int a = 0; a < 3; ++a) fan[a] += n[a];
   }
   for (uint32_t i = vt.offset[v]; i < vt.offset[v + 1]; ++i) {
     const uint32_t f = vt.index[i];
-    V3 before[3], after[3];
+    V3 after[3];
     for (int k = 0; k < 3; ++k) {
       const uint32_t w = m.triangles[3 * size_t{f} + k];
-      before[k] = pos(m, w);
-      after[k] = w == v ? V3{to[0], to[1], to[2]} : before[k];
+      after[k] = w == v ? V3{to[0], to[1], to[2]} : pos(m, w);
     }
-    const V3 n0 = cross(sub(before[1], before[0]), sub(before[2], before[0]));
+    const V3 n0 = i - vt.offset[v] < kKept ? kept[i - vt.offset[v]] : face_normal(m, f);
     const V3 n1 = cross(sub(after[1], after[0]), sub(after[2], after[0]));
     // A triangle already at odds with its fan may move, as long as it does
     // not turn further against the fan.

@@ -141,13 +141,18 @@ std::vector<std::pair<uint32_t, uint32_t>> crossings(const TriangleMesh& m, cons
       it.f = f;
       local.push_back(it);
     }
+    // Sorted by the bounds' low x, a triangle's pairs end at the first one
+    // starting beyond its high x (sweep and prune): most pairs in a bin lie
+    // apart in x, and are never looked at.  The hits are sorted below, so
+    // the order pairs are found in does not matter.
+    std::sort(local.begin(), local.end(), [](const Item& a, const Item& b) { return a.box[0] < b.box[0]; });
     for (size_t i = 0; i < local.size(); ++i)
-      for (size_t j = i + 1; j < local.size(); ++j) {
+      for (size_t j = i + 1; j < local.size() && !(local[j].box[0] > local[i].box[3]); ++j) {
         const Item& p = local[i];
         const Item& q = local[j];
         if (marked && !(*marked)[p.f] && !(*marked)[q.f]) continue;
         bool apart = false;
-        for (int a = 0; a < 3; ++a) apart |= p.box[a] > q.box[3 + a] || q.box[a] > p.box[3 + a];
+        for (int a = 1; a < 3; ++a) apart |= p.box[a] > q.box[3 + a] || q.box[a] > p.box[3 + a];
         if (apart) continue;
         // Test each pair once: in the bin holding the low corner of the
         // overlap of the two bounds.

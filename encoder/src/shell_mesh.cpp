@@ -1,6 +1,7 @@
 #include "dbss/encoder/shell_mesh.h"
 
 #include <array>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -10,7 +11,7 @@ namespace {
 constexpr uint32_t kNoVertex = 0xFFFFFFFFu;
 }  // namespace
 
-Result<TriangleMesh> triangulate_shell(const CellGrid& g, bool collapse_types) {
+Result<TriangleMesh> triangulate_shell(const CellGrid& g, bool collapse_types, MeshInfo* info_out) {
   const int nx = g.n[0] + 1, ny = g.n[1] + 1, nz = g.n[2] + 1;
   std::vector<uint32_t> corner_id(size_t(nx) * ny * nz, kNoVertex);
   std::vector<std::array<int, 3>> corner_of;  // grid corner of each vertex
@@ -81,12 +82,15 @@ Result<TriangleMesh> triangulate_shell(const CellGrid& g, bool collapse_types) {
         }
         if (!collapse_types) continue;
         const int n_air = 6 - n_solid;
-        // The cell's air vertices.
-        std::vector<uint32_t> air;
+        // The cell's air vertices (at most its eight corners: kept on the
+        // stack, not allocated per cell).
+        std::array<uint32_t, 8> air_ids;
+        size_t n_air_ids = 0;
         for (int cc = 0; cc < 8; ++cc) {
           const int p[3] = {i + (cc & 1), j + (cc >> 1 & 1), k + (cc >> 2)};
-          if (lone(p[0], p[1], p[2])) air.push_back(corner_id[(size_t(p[2]) * ny + p[1]) * nx + p[0]]);
+          if (lone(p[0], p[1], p[2])) air_ids[n_air_ids++] = corner_id[(size_t(p[2]) * ny + p[1]) * nx + p[0]];
         }
+        const std::span<const uint32_t> air(air_ids.data(), n_air_ids);
         const bool ribbon = n_solid == 2 && solid_faces[0] / 2 == solid_faces[1] / 2;
         if ((n_air == 5 && air.size() == 4) || (n_air == 4 && !ribbon && air.size() == 2)) {
           // Types 1 and 2: the air vertices become one.
@@ -144,6 +148,7 @@ Result<TriangleMesh> triangulate_shell(const CellGrid& g, bool collapse_types) {
   if (info.euler != 2 * solid)
     return Status(ErrorCode::internal, "shell triangulation has Euler characteristic " + std::to_string(info.euler) +
                                            ", the carved solid's boundary " + std::to_string(2 * solid));
+  if (info_out) *info_out = info;
   return m;
 }
 

