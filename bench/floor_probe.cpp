@@ -118,9 +118,10 @@ int main(int argc, char** argv) {
         // hit: the line's first hit among the points, no surface fit (the
         // paper's sampler).
         const bool fit = v.rfind("hit", 0) != 0;
-        sampler.sample = [&, fit](uint32_t, const double q[3], const double n[3], double half_length) {
+        const bool widen = dbss::points_are_noisy(index);  // as encode_levels decides
+        sampler.sample = [&, fit, widen](uint32_t, const double q[3], const double n[3], double half_length) {
           thread_local dbss::SampleScratch scratch;
-          const dbss::Sample s = dbss::sample_displacement(index, q, n, half_length, half_length, scratch, fit);
+          const dbss::Sample s = dbss::sample_displacement(index, q, n, half_length, half_length, scratch, fit, nullptr, widen);
           double t = 0;
           if (tree.nearest_line_hit(q, n, half_length, t)) {
             std::lock_guard<std::mutex> lock(mutex);

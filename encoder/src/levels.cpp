@@ -73,10 +73,13 @@ Result<EncodedLevels> encode_levels(const TriangleMesh& control, const PointInde
     *normals = estimate_point_normals(points, std::max(1u, o.threads));
     sides = {normals.get(), std::cos(30 * 3.14159265358979323846 / 180)};
   }
+  // On a noisy cloud the fit may widen (surface_fit.h); a clean one keeps
+  // its narrow fits, byte for byte.
+  const bool widen = points_are_noisy(points);
   LevelSampler sampler;
-  sampler.sample = [&points, scratch, normals, sides](uint32_t, const double p[3], const double n[3], double half_length) {
+  sampler.sample = [&points, scratch, normals, sides, widen](uint32_t, const double p[3], const double n[3], double half_length) {
     SampleScratch& mine = scratch->take();
-    const Sample s = sample_displacement(points, p, n, half_length, half_length, mine, true, sides.normals ? &sides : nullptr);
+    const Sample s = sample_displacement(points, p, n, half_length, half_length, mine, true, sides.normals ? &sides : nullptr, widen);
     scratch->give(mine);
     return s;
   };

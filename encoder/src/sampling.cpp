@@ -36,7 +36,7 @@ Sample sample_displacement(const PointIndex& index, const double p[3], const dou
 }
 
 Sample sample_displacement(const PointIndex& index, const double pd[3], const double nd[3], double radius,
-                           double half_length, SampleScratch& scratch, bool fit, const PointSides* sides) {
+                           double half_length, SampleScratch& scratch, bool fit, const PointSides* sides, bool widen) {
   const PointCloud& pc = index.points();
   const V p(pd[0], pd[1], pd[2]), n(nd[0], nd[1], nd[2]);
   const auto point = [&](uint32_t i) { return V(pc.xyz[3 * i], pc.xyz[3 * i + 1], pc.xyz[3 * i + 2]); };
@@ -75,7 +75,7 @@ Sample sample_displacement(const PointIndex& index, const double pd[3], const do
     // A fit that leaves the cylinder the hit was found in (its neighbourhood
     // reaches past the cylinder on a sparse scan) is not trusted over it.
     if (fit) {
-      const SurfaceFit f = fit_height(index, pd, nd, d, kFitPoints, scratch.fit, sides);
+      const SurfaceFit f = fit_height(index, pd, nd, d, kFitPoints, scratch.fit, sides, widen);
       if (f.ok && (std::abs(f.height) <= half_length || std::abs(d) > half_length))
         d = f.height, out.fitted = true, out.spread = f.spread;
     }

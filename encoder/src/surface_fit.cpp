@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 namespace dbss {
 
@@ -57,6 +58,17 @@ double kernel_weight(Kernel k, double u, double v) {
 // (the shape's own detail); noise of 1e-3 of the diagonal gives 5-10%.
 constexpr double kQuietScatter = 0.02;
 
+// points_are_noisy's neighbourhood: the fit's own (kFitPoints, sampling.h).
+constexpr size_t kNoiseProbePoints = 24;
+
+// A wider neighbourhood's fit is taken on noise when its height and the
+// first fit's lie within this many of their standard errors (summed) of
+// each other: their confidence intervals overlap.  Measured on noisy
+// clouds (1e-3 of the diagonal, 30k points): 1 kept too little (the rise
+// past level 3 stayed 2.5%), 2 keeps the armadillo's level 3 within 3% of
+// the narrow fit's.
+constexpr double kWiderAgreement = 2.0;
+
 struct Fitted {
   double height = 0, residual = 0;
   double spread = 0;  // the standard error of height: residual * sqrt(sum w^2) / sum w
@@ -97,18 +109,23 @@ bool fit_weighted(FitScratch& s, bool quadric, Kernel kernel, double radius, Fit
 
 }  // namespace
 
-SurfaceFit fit_height(const PointIndex& index, const double p[3], const double n[3], double t0, size_t k,
-                      FitScratch& s, const PointSides* sides) {
-  SurfaceFit out;
+namespace {
+
+// The k points nearest the foot p + t0 n in the line's frame (u, v in
+// units of the neighbourhood's radius, h along n from p), less those
+// farther from t0 along n than half the radius; the radius, or 0 when
+// there are too few.
+double gather(const PointIndex& index, const double p[3], const double n[3], double t0, size_t k, FitScratch& s,
+              const PointSides* sides) {
   const PointCloud& pc = index.points();
   const float foot[3] = {static_cast<float>(p[0] + t0 * n[0]), static_cast<float>(p[1] + t0 * n[1]),
                          static_cast<float>(p[2] + t0 * n[2])};
   s.index.resize(k);
   s.dist2.resize(k);
   const size_t found = index.nearest_k(foot, k, s.index.data(), s.dist2.data());
-  if (found < 4) return out;
+  if (found < 4) return 0;
   const double radius = std::sqrt(static_cast<double>(s.dist2[found - 1]));
-  if (!(radius > 0)) return out;
+  if (!(radius > 0)) return 0;
   // A frame with n as its third axis.
   const Eigen::Vector3d nz(n[0], n[1], n[2]);
   const Eigen::Vector3d helper = std::abs(nz.x()) < 0.6 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
@@ -129,10 +146,20 @@ SurfaceFit fit_height(const PointIndex& index, const double p[3], const double n
     const double u = d.dot(e1) / radius, v = d.dot(e2) / radius;
     s.u.push_back(u), s.v.push_back(v), s.h.push_back(h);
   }
-  const size_t used = s.h.size();
-  if (used < 4) return out;
+  return s.h.size() < 4 ? 0 : radius;
+}
+
+}  // namespace
+
+SurfaceFit fit_height(const PointIndex& index, const double p[3], const double n[3], double t0, size_t k,
+                      FitScratch& s, const PointSides* sides, bool widen) {
+  SurfaceFit out;
+  const double radius = gather(index, p, n, t0, k, s, sides);
+  if (!(radius > 0)) return out;
+  const double band = 0.5 * radius;
+  size_t used = s.h.size();
   // The quadric where the points are enough to pin its curvature terms.
-  const bool quadric = used >= 12;
+  bool quadric = used >= 12;
   Fitted narrow;
   if (!fit_weighted(s, quadric, Kernel::narrow, radius, narrow)) return out;
   double height = narrow.height, spread = narrow.residual, error = narrow.spread;
@@ -144,6 +171,24 @@ SurfaceFit fit_height(const PointIndex& index, const double p[3], const double n
   if (blend > 0) {
     Fitted wide;
     if (fit_weighted(s, quadric, Kernel::wide, radius, wide)) {
+      // On noise, twice the points where the shape allows it: a height
+      // within kWiderAgreement standard errors (each fit's own, summed) of
+      // the first one's is the same surface, seen with half the variance.
+      // Why: the levels' vertices keep the fit's noise, and once the levels
+      // store only zeros the butterfly turns high-frequency vertex noise
+      // into a wavier surface (noise of 1e-3 of the diagonal: eight and
+      // knot1 rose 2.1-2.4% from level 3 to 4).  With the wider fit the
+      // neighbouring vertices share more of their points, their errors
+      // move together and the rise is 1.4-1.7%.  Unconditionally, four
+      // times the points cost the armadillo's detail (level 3 37% farther
+      // from the truth), so the agreement test guards the shape.
+      const double r = widen ? gather(index, p, n, t0, 2 * k, s, sides) : 0;
+      Fitted wider;
+      if (r > 0 && fit_weighted(s, s.h.size() >= 12, Kernel::wide, r, wider) &&
+          std::abs(wider.height - wide.height) <= kWiderAgreement * (wide.spread + wider.spread)) {
+        wide = wider;
+        used = s.h.size();
+      }
       height = (1 - blend) * narrow.height + blend * wide.height;
       spread = (1 - blend) * narrow.residual + blend * wide.residual;
       error = (1 - blend) * narrow.spread + blend * wide.spread;
@@ -157,7 +202,41 @@ SurfaceFit fit_height(const PointIndex& index, const double p[3], const double n
   out.residual = spread;
   out.spread = error;
   out.points = static_cast<uint32_t>(used);
+  out.radius = radius;
   return out;
+}
+
+bool points_are_noisy(const PointIndex& index) {
+  const PointCloud& pc = index.points();
+  const size_t n = pc.size(), m = std::min<size_t>(n, 1024);
+  if (m == 0) return false;
+  FitScratch s;
+  std::vector<uint32_t> near(kNoiseProbePoints);
+  std::vector<float> dist2(kNoiseProbePoints);
+  std::vector<double> scatter;
+  scatter.reserve(m);
+  for (size_t j = 0; j < m; ++j) {
+    const size_t i = j * n / m;
+    const float* x = &pc.xyz[3 * i];
+    const size_t found = index.nearest_k(x, kNoiseProbePoints, near.data(), dist2.data());
+    if (found < 6) continue;
+    // The neighbours' plane normal, then the fit along it through the point.
+    Eigen::Vector3d c = Eigen::Vector3d::Zero();
+    for (size_t a = 0; a < found; ++a) c += Eigen::Vector3d(pc.xyz[3 * near[a]], pc.xyz[3 * near[a] + 1], pc.xyz[3 * near[a] + 2]);
+    c /= static_cast<double>(found);
+    Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+    for (size_t a = 0; a < found; ++a) {
+      const Eigen::Vector3d d = Eigen::Vector3d(pc.xyz[3 * near[a]], pc.xyz[3 * near[a] + 1], pc.xyz[3 * near[a] + 2]) - c;
+      cov += d * d.transpose();
+    }
+    const Eigen::Vector3d normal = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(cov).eigenvectors().col(0);
+    const double p[3] = {x[0], x[1], x[2]}, nn[3] = {normal.x(), normal.y(), normal.z()};
+    const SurfaceFit f = fit_height(index, p, nn, 0, kNoiseProbePoints, s);
+    if (f.ok && f.radius > 0) scatter.push_back(f.residual / f.radius);
+  }
+  if (scatter.empty()) return false;
+  std::nth_element(scatter.begin(), scatter.begin() + scatter.size() / 2, scatter.end());
+  return scatter[scatter.size() / 2] > kQuietScatter;
 }
 
 }  // namespace dbss

@@ -53,8 +53,10 @@ struct SampleScratch {
 // the fit fails.  `sides` (may be null): one-sided, the hit and the fit
 // from the points whose normal agrees with n (PointSides), unless fewer
 // than 3 of them are in the cylinder.
+// `widen`: fit_height's wider fit on noise (a cloud points_are_noisy).
 Sample sample_displacement(const PointIndex& points, const double p[3], const double n[3], double radius,
-                           double half_length, SampleScratch& scratch, bool fit = true, const PointSides* sides = nullptr);
+                           double half_length, SampleScratch& scratch, bool fit = true, const PointSides* sides = nullptr,
+                           bool widen = false);
 // The same with scratch space of its own (allocated per call): for single
 // samples and tests.
 Sample sample_displacement(const PointIndex& points, const double p[3], const double n[3], double radius,
