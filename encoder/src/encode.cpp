@@ -235,7 +235,9 @@ std::unique_ptr<PointIndex> join_cut_tubes(Encoding& e, const PointIndex& index,
   auto joined_index = std::make_unique<PointIndex>(joined);
   ControlMeshOptions quiet = co;
   quiet.on_stage = nullptr;
-  if (quiet.grid == 0) quiet.grid = e.stages.carving.grid;
+  // (The grid is searched again on the joined points: at the first build's
+  // grid the hole sweep at 8,000 points joined one tube fewer, and a double
+  // torus came out at 1.41x the complete scan's error instead of 1.08x.)
   auto stages = build_control_mesh(*joined_index, quiet);
   if (!stages.ok() || stages.value().open) return nullptr;
   const TriangleMesh& control = stages.value().control;
