@@ -349,6 +349,16 @@ int main(int argc, char** argv) {
               "those bounds with a warning; SILENT = outside them with none.  surf, dropped, warnings: the surface\n"
               "mode chosen, points dropped as outliers and check_scan()'s warning codes ('-': this build has none).\n",
               o.levels, o.levels);
+  for (const auto& [name, mesh] : complete) {
+    // The reference surfaces themselves: their topology, and the complete
+    // scan's points to them.
+    const auto source = std::find_if(complete_scans.begin(), complete_scans.end(), [&](const auto& c) { return c.first == name; });
+    const PointCloud whole = source->second();
+    const dt::Topology topo = dt::topology(mesh);
+    std::printf("complete %-19s %7zu %4u %5lld %5u %20.2e\n", name.c_str(), whole.size(), topo.components,
+                static_cast<long long>(topo.genus), topo.boundary_loops,
+                dbss::points_to_mesh(whole.xyz, mesh).mean / dt::bounds(whole).diagonal());
+  }
   if (o.hole_sweep)
     std::printf("vs-complete: the input's points' mean distance to this surface over theirs to the complete scan's\n"
                 "(the error on the scanned part; bound 1.3).  joined: tubes the scan cut through joined across the gap.\n");
