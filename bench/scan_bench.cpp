@@ -18,6 +18,7 @@
 //   --points: samples per shape (default 8000); --data: the directory holding
 //   data/points_3 and data/meshes (default the source tree's test-data);
 //   NAME_PART: run only the inputs whose name contains one of them.
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -50,6 +51,10 @@ struct Input {
   std::function<std::pair<PointCloud, PointCloud>()> make;  // points, reference
   std::string expect;
 };
+
+// The hole sweep's complete scans, by shape name (an input named "<shape>
+// ..." was cut from it): the error ratio is measured against their surfaces.
+using CompleteScans = std::vector<std::pair<std::string, std::function<PointCloud()>>>;
 
 struct Options {
   uint32_t levels = 2;
@@ -107,7 +112,7 @@ std::vector<Input> defect_inputs(const Options& o) {
 // right round a tube, closing it keeps the genus only if the two cut ends
 // are joined.  Right: closed with the genus, or open along the hole (one
 // loop, or two and a handle fewer where the band went round a tube).
-std::vector<Input> hole_sweep_inputs(const Options& o) {
+std::vector<Input> hole_sweep_inputs(const Options& o, CompleteScans& complete) {
   std::vector<Input> in;
   const auto shapes = dt::genus_shapes();
   const dt::Vec3 directions[] = {{0.3, 0.2, 1.0}, {1, 0, 0}, {0, 1, 0.3}, {-1, 0.5, 0.2}, {0.2, -1, -0.4}, {0, 0, -1}};
@@ -117,6 +122,7 @@ std::vector<Input> hole_sweep_inputs(const Options& o) {
     const dt::Shape shape = *s;
     const size_t n = o.shape_points;
     const long long g = shape.genus;
+    complete.emplace_back(name, [shape, n] { return dt::sample_sdf(shape.sdf, shape.lo, shape.hi, n, 5); });
     const std::string expect = "1/" + std::to_string(g) + "/0|1/" + std::to_string(g) + "/1|1/" + std::to_string(g - 1) + "/2";
     for (const dt::Vec3& d : directions)
       for (double share : {0.10, 0.15}) {
@@ -229,15 +235,19 @@ int main(int argc, char** argv) {
     }
   }
 
-  std::vector<Input> inputs = o.hole_sweep ? hole_sweep_inputs(o) : defect_inputs(o);
+  CompleteScans complete_scans;
+  std::vector<Input> inputs = o.hole_sweep ? hole_sweep_inputs(o, complete_scans) : defect_inputs(o);
   if (o.scans && !o.hole_sweep)
     for (Input& s : scan_inputs(o)) inputs.push_back(std::move(s));
 
   std::printf("levels %u, default options; shapes sampled with %zu points\n", o.levels, o.shape_points);
   std::printf("%-28s %7s %4s %5s %5s %4s %7s %9s %7s %7s %4s %6s %7s %-7s %s\n", "input", "points", "comp", "genus",
               "loops", "topo", "clamp%", "p->s/diag", "p->s/sp", "enc s", "exit", "surf", "dropped", "verdict",
-              "warnings");
-  int failures = 0, silent = 0, wrong_topology = 0;
+              o.hole_sweep ? "warnings  vs-complete joined" : "warnings");
+  int failures = 0, silent = 0, wrong_topology = 0, joined = 0, over_ratio = 0;
+  double worst_ratio = 0;
+  // The hole sweep's complete scans, encoded once each: their finest level.
+  std::vector<std::pair<std::string, dbss::TriangleMesh>> complete;
   for (const Input& in : inputs) {
     if (!wanted(o, in.name)) continue;
     const auto [points, reference] = in.make();
@@ -294,10 +304,41 @@ int main(int argc, char** argv) {
       topo_mark = ("|" + in.expect + "|").find("|" + got + "|") != std::string::npos ? "=" : "X";
       if (*topo_mark == 'X') ++wrong_topology;
     }
-    std::printf("%4u %5lld %5u %4s %7.2f %9.2e %7.2f %7.2f %4s %6s %7s %-7s %s\n", topo.components,
+    std::string sweep;
+    const auto source = std::find_if(complete_scans.begin(), complete_scans.end(),
+                                     [&](const auto& c) { return in.name.rfind(c.first + " ", 0) == 0; });
+    if (source != complete_scans.end()) {
+      // The error on the scanned part against the complete scan's: the
+      // input's points to this surface over the same points to the
+      // complete scan's surface (same options).
+      auto it = std::find_if(complete.begin(), complete.end(), [&](const auto& c) { return c.first == source->first; });
+      if (it == complete.end()) {
+        auto whole = dbss::encode_points(source->second(), eo);
+        if (whole.ok()) {
+          const dbss::Encoding& w = whole.value();
+          complete.emplace_back(source->first, dbss::TriangleMesh{w.levels.positions.back(), w.levels.triangles.back()});
+          it = complete.end() - 1;
+        }
+      }
+      char b[64];
+      if (it != complete.end()) {
+        const double ratio = to_surface / dbss::points_to_mesh(reference.xyz, it->second).mean;
+        worst_ratio = std::max(worst_ratio, ratio);
+        over_ratio += ratio > 1.3;
+        std::snprintf(b, sizeof b, " %6.2f", ratio);
+      } else {
+        std::snprintf(b, sizeof b, " %6s", "-");
+      }
+      sweep = b;
+#ifdef DBSS_SCAN_CHECK
+      sweep += " " + std::to_string(e.tubes.tubes);
+      joined += e.tubes.tubes > 0;
+#endif
+    }
+    std::printf("%4u %5lld %5u %4s %7.2f %9.2e %7.2f %7.2f %4s %6s %7s %-7s %-9s%s\n", topo.components,
                 static_cast<long long>(topo.genus), topo.boundary_loops, topo_mark, 100 * clamped, to_surface / diag,
                 spacing > 0 ? to_surface / spacing : 0.0, seconds, "ok", surf.c_str(), dropped.c_str(), verdict,
-                warnings.c_str());
+                warnings.c_str(), sweep.c_str());
   }
   std::printf("\ncomp, genus, loops: of the level-%u surface (genus summed over components, open ones included);\n"
               "topo: '=' the right ones for the input (a hole: bridged, or open with one loop; a half: cut by z = 0,\n"
@@ -308,7 +349,23 @@ int main(int argc, char** argv) {
               "those bounds with a warning; SILENT = outside them with none.  surf, dropped, warnings: the surface\n"
               "mode chosen, points dropped as outliers and check_scan()'s warning codes ('-': this build has none).\n",
               o.levels, o.levels);
+  for (const auto& [name, mesh] : complete) {
+    // The reference surfaces themselves: their topology, and the complete
+    // scan's points to them.
+    const auto source = std::find_if(complete_scans.begin(), complete_scans.end(), [&](const auto& c) { return c.first == name; });
+    const PointCloud whole = source->second();
+    const dt::Topology topo = dt::topology(mesh);
+    std::printf("complete %-19s %7zu %4u %5lld %5u %20.2e\n", name.c_str(), whole.size(), topo.components,
+                static_cast<long long>(topo.genus), topo.boundary_loops,
+                dbss::points_to_mesh(whole.xyz, mesh).mean / dt::bounds(whole).diagonal());
+  }
+  if (o.hole_sweep)
+    std::printf("vs-complete: the input's points' mean distance to this surface over theirs to the complete scan's\n"
+                "(the error on the scanned part; bound 1.3).  joined: tubes the scan cut through joined across the gap.\n");
   std::printf("%d failed, %d silently outside the bounds, %d with the wrong topology\n", failures, silent,
               wrong_topology);
+  if (o.hole_sweep)
+    std::printf("%d with a tube joined, %d over 1.3x the complete scan's error (worst %.2fx)\n", joined, over_ratio,
+                worst_ratio);
   return 0;
 }

@@ -162,10 +162,11 @@ ScanCheck check_scan(const Encoding& e, const PointIndex& index, unsigned thread
                         "overshoots");
   // A bridged hole is reported, not warned about; with the band between
   // its rim and the last points it leaves about 1.4 times its area bare.
-  if (c.uncovered_share > kMaxUncovered + 1.5 * e.stages.bridged_area)
+  const double bridged = e.stages.bridged_area + e.tubes.area_share;
+  if (c.uncovered_share > kMaxUncovered + 1.5 * bridged)
     warn("uncovered", fmt("%.1f%%", 100 * c.uncovered_share) + " of the surface has no point within " +
                           (c.spacing > 0 ? fmt("%.1f", reach / c.spacing) + " point spacings" : fmt("%.3g", reach) + " model units") + " (bound " + fmt("%.0f%%", 100 * kMaxUncovered) +
-                          (e.stages.bridged_area > 0 ? fmt(" plus 1.5 times the %.1f%% bridged over holes", 100 * e.stages.bridged_area) : "") +
+                          (bridged > 0 ? fmt(" plus 1.5 times the %.1f%% bridged over holes", 100 * bridged) : "") +
                           "): surface invented where nothing was scanned (holes, an open patch closed over, or stray points)");
   // The bridging stage's doubtful pairs and the points' capped rims are
   // mostly the same openings seen twice: the larger count stands.

@@ -62,8 +62,20 @@ struct EncodeTimes {
   double choice = 0;  // seconds the control mesh's candidate added (the one not kept, and the comparison)
 };
 
+// Cut tubes joined (encode.cpp, join_cut_tubes): where a closed surface
+// capped two rims of the points that look like a tube's cut ends, the gap
+// was sampled (tube_points.h) and the surface built again from the points
+// with those added: the control mesh and the levels are built on those, the
+// self-check and `points` are the scan's alone.
+struct TubeJoin {
+  size_t tubes = 0;        // gaps joined
+  size_t points = 0;       // points added in them (no scan supports them)
+  double area_share = 0;   // their share of the control mesh's area, 0..1
+};
+
 struct Encoding {
   PointCloud points;              // the points the surface was built from (after outlier removal)
+  TubeJoin tubes;                 // lost handles joined across gaps in the points
   OutlierStats outliers;
   CreaseStats creases;            // found on the control mesh before Draco
   ControlMeshStages stages;

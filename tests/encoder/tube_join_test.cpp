@@ -1,0 +1,144 @@
+// Lost handles joined (issue 13): where a scan misses a band right round a
+// tube and the closed surface caps the two cut ends, the encoder samples the
+// gap along the tube a bridge would follow (tube_points.h) and builds the
+// surface again (encode.cpp, join_cut_tubes).  A capped sphere (one rim, no
+// pair) must stay as it is.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <numbers>
+#include <vector>
+
+#include "dbss/encoder/encode.h"
+#include "dbss/encoder/mesh_info.h"
+#include "dbss/encoder/point_distances.h"
+#include "dbss/encoder/point_rims.h"
+#include "dbss/encoder/tube_points.h"
+#include "../defect_shapes.h"
+
+using namespace dbss;
+namespace dt = dbss::test;
+
+namespace {
+
+const dt::Shape& shape(const char* name) {
+  static const std::vector<dt::Shape> shapes = dt::genus_shapes();
+  const dt::Shape* s = dt::find_shape(shapes, name);
+  REQUIRE(s != nullptr);
+  return *s;
+}
+
+// The torus's points (R = 1, r = 0.35 round the z axis) without a band right
+// round its tube: those within `half_width` of +x round the z axis.
+PointCloud cut_torus(double half_width, size_t count = 8000) {
+  const dt::Shape& s = shape("torus");
+  const PointCloud c = dt::sample_sdf(s.sdf, s.lo, s.hi, count, 5);
+  return dt::keep_points(c, [&](size_t i) { return std::abs(std::atan2(c.xyz[3 * i + 1], c.xyz[3 * i])) > half_width; });
+}
+
+EncodeOptions closed_options(uint32_t levels) {
+  EncodeOptions o;
+  o.levels = levels;
+  o.control.surface = SurfaceMode::closed;
+  return o;
+}
+
+TriangleMesh finest(const Encoding& e) { return {e.levels.positions.back(), e.levels.triangles.back()}; }
+
+bool warned(const Encoding& e, const char* code) {
+  for (const ScanWarning& w : e.check.warnings)
+    if (w.code == code) return true;
+  return false;
+}
+
+}  // namespace
+
+TEST_CASE("tube points: a cut band's gap is sampled on the tube it cut, and nowhere else") {
+  const PointCloud c = cut_torus(0.35);
+  const PointIndex index(c);
+  const std::vector<PointRim> rims = find_point_rims(index);
+  const auto pairs = tube_end_pairs(rims);
+  REQUIRE(pairs.size() == 1);
+  const double spacing = std::sqrt(std::numbers::pi / 6) * point_spacing(index, 6, 0.5);
+  const TubePoints t = sample_cut_tubes(index, rims, pairs, spacing);
+  REQUIRE(t.tubes == 1);
+  REQUIRE(t.points.size() == c.size() + t.added);
+  // The band is 0.7 rad of the ring: about 0.7 * 2 pi * 0.35 = 1.5 of area,
+  // as densely sampled as the scan (8,000 points on 4.8 area).
+  CHECK(t.added > 1000);
+  CHECK(t.added < 5000);
+  CHECK(t.area == Approx(0.7 * 2 * std::numbers::pi * 0.35).epsilon(0.35));
+  double worst = 0, widest = 0;
+  for (size_t i = c.size(); i < t.points.size(); ++i) {
+    const double x = t.points.xyz[3 * i], y = t.points.xyz[3 * i + 1], z = t.points.xyz[3 * i + 2];
+    // Off the torus: distance from its tube's circle, less the tube's radius.
+    worst = std::max(worst, std::abs(std::hypot(std::hypot(x, y) - 1.0, z) - 0.35));
+    widest = std::max(widest, std::abs(std::atan2(y, x)));
+  }
+  // The Hermite curve between the rims' centres follows the ring, and the
+  // tube's radius is blended from the rims' (each an estimate from their
+  // boundary points, within 30% of the tube's): the added points lie within
+  // a third of the radius of the torus and stay in the band.
+  CHECK(worst < 0.12);
+  CHECK(widest < 0.45);
+}
+
+TEST_CASE("tube join: a triple torus whose carving capped a cut tube gets its handle back under --surface closed") {
+  // The hole sweep's case (bench/scan_bench --hole-sweep): 15% of the area
+  // from +x, 8,000 points, seed 5.  Before the join: genus 2, `topology`
+  // warned.
+  const dt::Shape& s = shape("triple torus");
+  const PointCloud whole = dt::sample_sdf(s.sdf, s.lo, s.hi, 8000, 5);
+  const PointCloud holed = dt::with_hole(whole, {1, 0, 0}, 0.15);
+  auto r = encode_points(holed, closed_options(1));
+  REQUIRE(r.ok());
+  const Encoding& e = r.value();
+  const MeshInfo info = mesh_info(finest(e));
+  CHECK(info.closed);
+  CHECK(info.components == 1);
+  CHECK(info.genus == 3);
+  CHECK(e.tubes.tubes == 1);
+  CHECK(e.tubes.area_share > 0);
+  // The hole is 15% of the area; the tube is round, of its rims' mean
+  // radius (0.45-0.57 here: the cuts are oblique across tubes of 0.3), so
+  // it comes out larger than what the scan missed (18%).
+  CHECK(e.tubes.area_share < 0.25);
+  CHECK_FALSE(warned(e, "topology"));
+  // The error on the scanned part within 1.3 times the complete scan's.
+  auto w = encode_points(whole, closed_options(1));
+  REQUIRE(w.ok());
+  const double joined = points_to_mesh(holed.xyz, finest(e)).mean;
+  const double complete = points_to_mesh(holed.xyz, finest(w.value())).mean;
+  INFO("scanned part to the joined surface " << joined << ", to the complete scan's " << complete);
+  CHECK(joined <= 1.3 * complete);
+  // The meta's surface line says so.
+  bool said = false;
+  for (const auto& m : e.contents.metadata)
+    if (m.key == "surface") said = m.value.find("joined across the gap") != std::string::npos;
+  CHECK(said);
+}
+
+TEST_CASE("tube join: a torus cut right round its tube stays a torus under --surface closed") {
+  const PointCloud c = cut_torus(0.35);
+  auto r = encode_points(c, closed_options(1));
+  REQUIRE(r.ok());
+  const MeshInfo info = mesh_info(finest(r.value()));
+  CHECK(info.closed);
+  CHECK(info.components == 1);
+  CHECK(info.genus == 1);
+  CHECK_FALSE(warned(r.value(), "topology"));
+}
+
+TEST_CASE("tube join: a sphere with a cap cut off stays a sphere (one rim, nothing to join)") {
+  const dt::Shape& s = shape("sphere");
+  const PointCloud ball = dt::sample_sdf(s.sdf, s.lo, s.hi, 6000, 3);
+  const PointCloud c = dt::keep_points(ball, [&](size_t i) { return ball.xyz[3 * i + 2] < 0.7f; });
+  auto r = encode_points(c, closed_options(1));
+  REQUIRE(r.ok());
+  const Encoding& e = r.value();
+  const MeshInfo info = mesh_info(finest(e));
+  CHECK(info.closed);
+  CHECK(info.components == 1);
+  CHECK(info.genus == 0);
+  CHECK(e.tubes.tubes == 0);
+}
