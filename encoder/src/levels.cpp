@@ -71,7 +71,7 @@ Result<EncodedLevels> encode_levels(const TriangleMesh& control, const PointInde
   PointSides sides;
   if (!o.creases.empty()) {
     *normals = estimate_point_normals(points, std::max(1u, o.threads));
-    sides = {normals.get(), std::cos(30 * 3.14159265358979323846 / 180)};
+    sides = {normals.get(), std::cos(30 * 3.14159265358979323846 / 180), o.wedge};
   }
   LevelSampler sampler;
   sampler.sample = [&points, scratch, normals, sides](uint32_t, const double p[3], const double n[3], double half_length) {

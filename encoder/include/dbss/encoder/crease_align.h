@@ -23,6 +23,7 @@ struct AlignStats {
   size_t snapped = 0;          // vertices moved onto a line or corner
   size_t flips = 0;            // edges flipped to join two vertices of one line
   size_t splits = 0;           // edges split where a line crosses them
+  size_t collapses = 0;        // vertices beside a line merged into their neighbour on it
 };
 
 // For each vertex of `mesh` (an oriented manifold, closed or open), the

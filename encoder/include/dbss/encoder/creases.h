@@ -38,6 +38,12 @@ struct CreaseOptions {
   // level-3 error from 1.67e-4 to 2.23e-4 of the diagonal (Hausdorff 3.0%
   // to 4.6%).
   bool split = false;
+  // Merge a vertex beside a line, whose move onto it was refused, into its
+  // neighbour on the line (crease_align.h).
+  bool collapse = true;
+  // Sample next to a crease from the two sides' planes (sampling.cpp's
+  // wedge), not from a surface fit over both.
+  bool wedge = true;
 };
 
 struct CreaseStats {
@@ -50,7 +56,7 @@ struct CreaseStats {
   double max_snap = 0;     // largest move, model units
   // The control mesh's alignment to the feature lines before the test
   // (crease_align.h): counts of its vertices moved and edges flipped.
-  size_t aligned = 0, align_flips = 0, align_splits = 0;
+  size_t aligned = 0, align_flips = 0, align_splits = 0, align_collapses = 0;
   size_t chain_edges = 0;  // tagged as joining two aligned vertices along their line
 };
 
