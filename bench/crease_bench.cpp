@@ -9,8 +9,10 @@
 //
 // usage: crease_bench [--points N] [--levels L] [--angle DEG] [--samples S] [--skip-absent] [--no-shape] [--split] SHAPE...
 //   --split: with crease alignment's edge splits (CreaseOptions::split)
+//   --collapse: with the alignment's collapses (CreaseOptions::collapse, off by default)
 //   --against-no-collapse: the 'off' columns are creases on without the alignment's collapses
-//     (CreaseOptions::collapse), the 'on' columns with them: before/after in one run
+//     (CreaseOptions::collapse), the 'on' columns with them (with --collapse): before/after in one run
+//   --against-no-relax: likewise without the flat faces' relaxation (CreaseOptions::relax)
 //   --against-no-wedge: likewise without the wedge sampling next to creases (CreaseOptions::wedge)
 //   --fixed-control: the default face count, not chosen by rate-distortion (EncodeOptions::choose_control)
 //   --no-shape: without the control mesh's shaping pass (edge flips, relaxation)
@@ -94,7 +96,7 @@ int main(int argc, char** argv) {
   uint32_t levels = 4;
   double angle = 30;
   std::vector<std::string> shapes;
-  bool skip_absent = false, shaping = true, split = false, against_no_collapse = false, against_no_wedge = false, fixed_control = false;
+  bool skip_absent = false, shaping = true, split = false, against_no_collapse = false, against_no_wedge = false, against_no_relax = false, fixed_control = false, collapse = false;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--points" && i + 1 < argc) points = std::strtoull(argv[++i], nullptr, 10);
@@ -107,6 +109,8 @@ int main(int argc, char** argv) {
     else if (a == "--against-no-collapse") against_no_collapse = true;
     else if (a == "--fixed-control") fixed_control = true;
     else if (a == "--against-no-wedge") against_no_wedge = true;
+    else if (a == "--against-no-relax") against_no_relax = true;
+    else if (a == "--collapse") collapse = true;
     else if (!a.empty() && a[0] == '-') return std::fprintf(stderr, "crease_bench: unknown option %s\n", a.c_str()), 1;
     else shapes.push_back(a);
   }
@@ -143,10 +147,14 @@ int main(int argc, char** argv) {
     for (int on = 0; on < 2; ++on) {
       dbss::EncodeOptions eo;
       eo.levels = levels;
-      const bool against = against_no_collapse || against_no_wedge;
+      const bool against = against_no_collapse || against_no_wedge || against_no_relax;
       eo.creases.angle_degrees = on || against ? angle : 0;
-      eo.creases.collapse = on || !against_no_collapse;
-      eo.creases.wedge = on || !against_no_wedge;
+      // 'on': the defaults (with --collapse, collapses too); 'off' with an
+      // --against-no-X: the same less X.
+      const dbss::CreaseOptions defaults;
+      eo.creases.collapse = (defaults.collapse || collapse) && (on || !against_no_collapse);
+      eo.creases.wedge = defaults.wedge && (on || !against_no_wedge);
+      eo.creases.relax = defaults.relax && (on || !against_no_relax);
       eo.control.shape.enabled = shaping;
       eo.creases.split = split;
       eo.choose_control = !fixed_control;
@@ -191,12 +199,12 @@ int main(int argc, char** argv) {
     }
     const Run& r = runs[1];
     std::printf("### %s\n", shape.c_str());
-    for (int on = against_no_collapse || against_no_wedge ? 0 : 1; on < 2; ++on) {
+    for (int on = against_no_collapse || against_no_wedge || against_no_relax ? 0 : 1; on < 2; ++on) {
       const dbss::CreaseStats& s = runs[on].stats;
-      if (against_no_collapse || against_no_wedge) std::printf("%s: ", on ? "after" : "before");
-      std::printf("aligned: %zu vertices moved onto feature lines, %zu merged into a neighbour on one, %zu edges flipped and %zu split along "
+      if (against_no_collapse || against_no_wedge || against_no_relax) std::printf("%s: ", on ? "after" : "before");
+      std::printf("aligned: %zu vertices moved onto feature lines, %zu merged into a neighbour on one, %zu flat-face moves, %zu edges flipped and %zu split along "
                   "them, %zu chain edges; creases: %zu edges, %zu corners, %zu darts, feature length %.3f; tags %zu bytes\n",
-                  s.aligned, s.align_collapses, s.align_flips, s.align_splits, s.chain_edges, s.creases, s.corners, s.darts,
+                  s.aligned, s.align_collapses, s.align_relaxed, s.align_flips, s.align_splits, s.chain_edges, s.creases, s.corners, s.darts,
                   runs[on].length / diag, runs[on].tag_bytes);
     }
     std::printf("control mesh: off: %s; on: %s\n", runs[0].choice.c_str(), runs[1].choice.c_str());
