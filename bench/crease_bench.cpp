@@ -9,6 +9,12 @@
 //
 // usage: crease_bench [--points N] [--levels L] [--angle DEG] [--samples S] [--skip-absent] [--no-shape] [--split] SHAPE...
 //   --split: with crease alignment's edge splits (CreaseOptions::split)
+//   --collapse: with the alignment's collapses (CreaseOptions::collapse, off by default)
+//   --against-no-collapse: the 'off' columns are creases on without the alignment's collapses
+//     (CreaseOptions::collapse), the 'on' columns with them (with --collapse): before/after in one run
+//   --against-no-relax: likewise without the flat faces' relaxation (CreaseOptions::relax)
+//   --against-no-wedge: likewise without the wedge sampling next to creases (CreaseOptions::wedge)
+//   --fixed-control: the default face count, not chosen by rate-distortion (EncodeOptions::choose_control)
 //   --no-shape: without the control mesh's shaping pass (edge flips, relaxation)
 //   CREASE_BENCH_DUMP=DIR (environment): each level written to DIR/SHAPE-{on,off}-L.off and
 //   the level-0 tags (edge ends, "c" corners) to DIR/SHAPE-creases.txt, for a closer look
@@ -80,6 +86,7 @@ struct Run {
   double length = 0;
   size_t tag_bytes = 0;
   std::vector<dbss::LevelStats> levels;
+  std::string choice;
 };
 
 }  // namespace
@@ -89,7 +96,7 @@ int main(int argc, char** argv) {
   uint32_t levels = 4;
   double angle = 30;
   std::vector<std::string> shapes;
-  bool skip_absent = false, shaping = true, split = false;
+  bool skip_absent = false, shaping = true, split = false, against_no_collapse = false, against_no_wedge = false, against_no_relax = false, fixed_control = false, collapse = false;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--points" && i + 1 < argc) points = std::strtoull(argv[++i], nullptr, 10);
@@ -99,6 +106,11 @@ int main(int argc, char** argv) {
     else if (a == "--skip-absent") skip_absent = true;
     else if (a == "--no-shape") shaping = false;
     else if (a == "--split") split = true;
+    else if (a == "--against-no-collapse") against_no_collapse = true;
+    else if (a == "--fixed-control") fixed_control = true;
+    else if (a == "--against-no-wedge") against_no_wedge = true;
+    else if (a == "--against-no-relax") against_no_relax = true;
+    else if (a == "--collapse") collapse = true;
     else if (!a.empty() && a[0] == '-') return std::fprintf(stderr, "crease_bench: unknown option %s\n", a.c_str()), 1;
     else shapes.push_back(a);
   }
@@ -135,15 +147,24 @@ int main(int argc, char** argv) {
     for (int on = 0; on < 2; ++on) {
       dbss::EncodeOptions eo;
       eo.levels = levels;
-      eo.creases.angle_degrees = on ? angle : 0;
+      const bool against = against_no_collapse || against_no_wedge || against_no_relax;
+      eo.creases.angle_degrees = on || against ? angle : 0;
+      // 'on': the defaults (with --collapse, collapses too); 'off' with an
+      // --against-no-X: the same less X.
+      const dbss::CreaseOptions defaults;
+      eo.creases.collapse = (defaults.collapse || collapse) && (on || !against_no_collapse);
+      eo.creases.wedge = defaults.wedge && (on || !against_no_wedge);
+      eo.creases.relax = defaults.relax && (on || !against_no_relax);
       eo.control.shape.enabled = shaping;
       eo.creases.split = split;
+      eo.choose_control = !fixed_control;
       auto e = dbss::encode_points(pc, eo);
       if (!e.ok()) return std::fprintf(stderr, "crease_bench: %s: %s\n", shape.c_str(), e.status().to_string().c_str()), 1;
       const dbss::Encoding& enc = e.value();
       runs[on].stats = enc.creases;
       runs[on].length = crease_length(enc.control, enc.contents.creases);
       runs[on].levels = enc.levels.stats;
+      runs[on].choice = enc.control_choice;
       for (const auto& t : enc.toc)
         if (t.type == dbss::format::kCrea) runs[on].tag_bytes = t.length + 12 + 16;  // data, frame, INDX entry
       for (uint32_t l = 0; l <= enc.level_count; ++l) {
@@ -178,8 +199,15 @@ int main(int argc, char** argv) {
     }
     const Run& r = runs[1];
     std::printf("### %s\n", shape.c_str());
-    std::printf("aligned: %zu vertices moved onto feature lines, %zu edges flipped and %zu split along them, %zu chain edges\n",
-                r.stats.aligned, r.stats.align_flips, r.stats.align_splits, r.stats.chain_edges);
+    for (int on = against_no_collapse || against_no_wedge || against_no_relax ? 0 : 1; on < 2; ++on) {
+      const dbss::CreaseStats& s = runs[on].stats;
+      if (against_no_collapse || against_no_wedge || against_no_relax) std::printf("%s: ", on ? "after" : "before");
+      std::printf("aligned: %zu vertices moved onto feature lines, %zu merged into a neighbour on one, %zu flat-face moves, %zu edges flipped and %zu split along "
+                  "them, %zu chain edges; creases: %zu edges, %zu corners, %zu darts, feature length %.3f; tags %zu bytes\n",
+                  s.aligned, s.align_collapses, s.align_relaxed, s.align_flips, s.align_splits, s.chain_edges, s.creases, s.corners, s.darts,
+                  runs[on].length / diag, runs[on].tag_bytes);
+    }
+    std::printf("control mesh: off: %s; on: %s\n", runs[0].choice.c_str(), runs[1].choice.c_str());
     std::printf("creases: %zu edges of %zu tested (%zu gaps closed), %zu corners, %zu darts, %zu vertices snapped (largest move %.2e of the "
                 "diagonal); feature length found %.3f, true %.3f (diagonals); tags %zu bytes\n\n",
                 r.stats.creases, r.stats.edges_tested, r.stats.gaps_closed, r.stats.corners, r.stats.darts, r.stats.snapped, r.stats.max_snap / diag,

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <unordered_map>
 #include <vector>
 
@@ -27,6 +28,14 @@ constexpr size_t kNormalPoints = 12;
 // them; the nearest go first, and a move that makes a triangle poorer than
 // kMinQuality or turns it over is not made.
 constexpr double kLineReach = 0.5, kCornerReach = 0.8, kMinQuality = 0.15;
+// A collapse onto a line keeps each remaining triangle within about 45
+// degrees of its normal (a triangle of one face stays on it) and the merged
+// vertex's valence at most this: the butterfly overshoots round high ones.
+constexpr double kKeepNormal = 0.7;
+constexpr size_t kMaxValence = 10;
+// Relaxation on flat faces: triangles within about 1 degree of one plane.
+const double kFlatFan = std::cos(1 * kPi / 180);
+constexpr int kRelaxRounds = 8;
 // The fewest points a vertex's neighbourhood holds.
 constexpr size_t kNeighbourhood = 64;
 // Two planes are one plane of the part when their normals are this close.
@@ -257,7 +266,7 @@ void align_to_features(TriangleMesh& m, const PointIndex& points, const CreaseOp
     if (stats) *stats = st;
     return;
   }
-  const uint32_t n = static_cast<uint32_t>(m.vertex_count());
+  uint32_t n = static_cast<uint32_t>(m.vertex_count());
   const double min_cos = std::cos(o.angle_degrees * kPi / 180);
   // Triangles at each vertex.
   std::vector<uint32_t> offset(n + 1, 0), at;
@@ -334,6 +343,167 @@ void align_to_features(TriangleMesh& m, const PointIndex& points, const CreaseOp
     ++st.snapped;
     if (f.planes == 3 && corners_out) corners_out->push_back(v);
     if (f.planes == 3) corners.push_back(f.target);
+  }
+
+  // 2b. Collapses: a vertex QEM left beside a line (or a corner) whose move
+  // onto it was refused, because a vertex of the line next to it is already
+  // there and the move would make a sliver, is merged into that neighbour.
+  // Left, it is a dart: the chain along the line breaks at it and the
+  // butterfly rounds the feature there on every level (the cube: 51 of its
+  // 82 darts were such vertices).
+  if (o.collapse) {
+    std::vector<std::vector<uint32_t>> tris(n);
+    for (uint32_t f = 0; f < m.triangle_count(); ++f)
+      for (int k = 0; k < 3; ++k) tris[m.triangles[3 * f + k]].push_back(f);
+    std::vector<uint8_t> dead_triangle(m.triangle_count(), 0), alive(n, 1);
+    const auto ring = [&](uint32_t v, std::vector<uint32_t>& out) {  // v's neighbours, sorted
+      out.clear();
+      for (uint32_t f : tris[v])
+        for (int k = 0; k < 3; ++k)
+          if (m.triangles[3 * f + k] != v) out.push_back(m.triangles[3 * f + k]);
+      std::sort(out.begin(), out.end());
+      out.erase(std::unique(out.begin(), out.end()), out.end());
+    };
+    std::vector<uint32_t> ring_v, ring_u, common;
+    for (uint32_t v = 0; v < n; ++v) {
+      if (snapped[v] || !feature[v].planes || !alive[v]) continue;
+      if (!(move[v] <= (feature[v].planes == 3 ? kCornerReach : kLineReach) * mean_edge[v] / edges[v])) continue;
+      ring(v, ring_v);
+      if (ring_v.size() != tris[v].size()) continue;  // on a boundary
+      // The neighbour on v's line (or corner) nearest v.
+      uint32_t best = n;
+      double best_d = INFINITY;
+      for (uint32_t u : ring_v) {
+        if (!snapped[u] || !alive[u]) continue;
+        const V3 d = sub(pos(m, u), pos(m, v));
+        const double len = std::sqrt(dot(d, d));
+        if (shared_planes(feature[v], feature[u], 0.1 * len + 0.1 * move[v]) < 2) continue;
+        if (len < best_d) best_d = len, best = u;
+      }
+      if (best == n) continue;
+      const uint32_t u = best;
+      ring(u, ring_u);
+      if (ring_u.size() != tris[u].size()) continue;
+      common.clear();
+      std::set_intersection(ring_v.begin(), ring_v.end(), ring_u.begin(), ring_u.end(), std::back_inserter(common));
+      if (common.size() != 2) continue;  // the link condition: else the collapse pinches the surface
+      bool ok = tris[common[0]].size() > 3 && tris[common[1]].size() > 3 && tris[u].size() + tris[v].size() - 4 <= kMaxValence;
+      // v's other triangles, with u in v's place: not turned, not tilted
+      // off their plane, not slivers.
+      for (size_t j = 0; j < tris[v].size() && ok; ++j) {
+        const uint32_t f = tris[v][j];
+        bool has_u = false;
+        V3 p[3];
+        for (int k = 0; k < 3; ++k) {
+          const uint32_t x = m.triangles[3 * f + k];
+          has_u = has_u || x == u;
+          p[k] = pos(m, x == v ? u : x);
+        }
+        if (has_u) continue;
+        const V3 before = unit(face_normal(m, f)), after = unit(cross(sub(p[1], p[0]), sub(p[2], p[0])));
+        ok = dot(before, after) > kKeepNormal && quality(p[0], p[1], p[2]) > kMinQuality;
+      }
+      if (!ok) continue;
+      for (uint32_t f : tris[v]) {
+        bool has_u = false;
+        for (int k = 0; k < 3; ++k) has_u = has_u || m.triangles[3 * f + k] == u;
+        if (has_u) {
+          dead_triangle[f] = 1;
+          for (int k = 0; k < 3; ++k) {
+            auto& list = tris[m.triangles[3 * f + k]];
+            if (m.triangles[3 * f + k] != v) list.erase(std::find(list.begin(), list.end(), f));
+          }
+          continue;
+        }
+        for (int k = 0; k < 3; ++k)
+          if (m.triangles[3 * f + k] == v) m.triangles[3 * f + k] = u;
+        tris[u].push_back(f);
+      }
+      tris[v].clear();
+      alive[v] = 0;
+      ++st.collapses;
+    }
+    if (st.collapses) {
+      // Renumber: the survivors keep their order, the merged triangles go.
+      std::vector<uint32_t> id(n, 0);
+      uint32_t next = 0;
+      for (uint32_t v = 0; v < n; ++v)
+        if (alive[v]) {
+          id[v] = next;
+          for (int a = 0; a < 3; ++a) m.positions[3 * size_t{next} + a] = m.positions[3 * size_t{v} + a];
+          feature[next] = feature[v], snapped[next] = snapped[v];
+          ++next;
+        }
+      m.positions.resize(3 * size_t{next});
+      feature.resize(next), snapped.resize(next);
+      size_t kept = 0;
+      for (uint32_t f = 0; f < dead_triangle.size(); ++f)
+        if (!dead_triangle[f]) {
+          for (int k = 0; k < 3; ++k) m.triangles[3 * kept + k] = id[m.triangles[3 * f + k]];
+          ++kept;
+        }
+      m.triangles.resize(3 * kept);
+      if (corners_out)
+        for (uint32_t& c : *corners_out) c = id[c];
+      n = next;
+    }
+  }
+
+  // 2c. Relaxation on the flat faces: a vertex whose triangles all lie in
+  // one plane (within kFlatFan) moves, in that plane, towards its
+  // neighbours' mean.  The surface is the same; the triangles next to a
+  // line get the size of their neighbours.  QEM leaves short edges along a
+  // feature and long ones across the flat face beside it, and the
+  // butterfly's stencil there reaches across the face and puts odd
+  // vertices past the feature line, in the face's plane, where no
+  // displacement along the normal can bring them back (the cube: 0.13
+  // outside, its Hausdorff distance).
+  if (o.relax && st.snapped > 0) {
+    std::vector<std::vector<uint32_t>> tris(n);
+    for (uint32_t f = 0; f < m.triangle_count(); ++f)
+      for (int k = 0; k < 3; ++k) tris[m.triangles[3 * f + k]].push_back(f);
+    std::vector<uint32_t> ring;
+    for (int round = 0; round < kRelaxRounds; ++round)
+      for (uint32_t v = 0; v < n; ++v) {
+        if (snapped[v] || feature[v].planes || tris[v].size() < 3) continue;
+        const V3 nv = unit(face_normal(m, tris[v][0]));
+        bool flat = true;
+        for (uint32_t f : tris[v]) flat = flat && dot(unit(face_normal(m, f)), nv) > kFlatFan;
+        if (!flat) continue;
+        ring.clear();
+        for (uint32_t f : tris[v])
+          for (int k = 0; k < 3; ++k)
+            if (m.triangles[3 * f + k] != v) ring.push_back(m.triangles[3 * f + k]);
+        std::sort(ring.begin(), ring.end());
+        ring.erase(std::unique(ring.begin(), ring.end()), ring.end());
+        if (ring.size() != tris[v].size()) continue;  // on a boundary
+        const V3 pv = pos(m, v);
+        V3 mean{0, 0, 0};
+        for (uint32_t x : ring)
+          for (int a = 0; a < 3; ++a) mean[a] += pos(m, x)[a] / double(ring.size());
+        V3 d = sub(mean, pv);
+        const double h = dot(d, nv);
+        for (int a = 0; a < 3; ++a) d[a] = 0.5 * (d[a] - h * nv[a]);  // in the plane, half way
+        std::vector<double> before;
+        for (uint32_t f : tris[v]) {
+          const uint32_t* t = &m.triangles[3 * f];
+          before.push_back(quality(pos(m, t[0]), pos(m, t[1]), pos(m, t[2])));
+        }
+        for (int a = 0; a < 3; ++a) m.positions[3 * size_t{v} + a] = static_cast<float>(pv[a] + d[a]);
+        // Kept when no triangle turns over and the worst one gets no worse.
+        bool ok = true;
+        double worst_before = INFINITY, worst_after = INFINITY;
+        for (size_t j = 0; j < tris[v].size(); ++j) {
+          const uint32_t* t = &m.triangles[3 * tris[v][j]];
+          const double q = quality(pos(m, t[0]), pos(m, t[1]), pos(m, t[2]));
+          ok = ok && dot(unit(face_normal(m, tris[v][j])), nv) > kFlatFan;
+          worst_before = std::min(worst_before, before[j]), worst_after = std::min(worst_after, q);
+        }
+        if (!ok || worst_after < worst_before)
+          for (int a = 0; a < 3; ++a) m.positions[3 * size_t{v} + a] = static_cast<float>(pv[a]);
+        else
+          ++st.relaxed;
+      }
   }
 
   // 3. Flips: an edge c-d whose two triangles' far corners u, w lie on one

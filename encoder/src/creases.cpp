@@ -49,6 +49,8 @@ format::Creases find_creases(TriangleMesh& mesh, const PointIndex& points, const
   std::vector<uint32_t> corners;
   align_to_features(mesh, points, o, &aligned, &chains, &corners);
   st.aligned = aligned.snapped, st.align_flips = aligned.flips, st.align_splits = aligned.splits;
+  st.align_collapses = aligned.collapses;
+  st.align_relaxed = aligned.relaxed;
   auto built = build_topology(static_cast<uint32_t>(mesh.vertex_count()), mesh.triangles);
   if (!built.ok()) return out;
   const LevelTopology& t = built.value();

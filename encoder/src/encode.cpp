@@ -121,6 +121,7 @@ Status encode_over_control(Encoding& e, const PointIndex& index, const EncodeOpt
   lo.zstd_level = o.effort;
   lo.threads = std::max(1u, o.threads);
   lo.creases = c.creases;
+  lo.wedge = o.creases.wedge;
   if (o.on_progress)
     lo.on_level = [&](uint32_t l) {
       o.on_progress("sampling level " + std::to_string(l) + " of " + std::to_string(level_count));

@@ -71,7 +71,7 @@ Result<EncodedLevels> encode_levels(const TriangleMesh& control, const PointInde
   PointSides sides;
   if (!o.creases.empty()) {
     *normals = estimate_point_normals(points, std::max(1u, o.threads));
-    sides = {normals.get(), std::cos(30 * 3.14159265358979323846 / 180)};
+    sides = {normals.get(), std::cos(30 * 3.14159265358979323846 / 180), o.wedge};
   }
   // On a noisy cloud the fit may widen (surface_fit.h); a clean one keeps
   // its narrow fits, byte for byte.

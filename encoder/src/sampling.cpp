@@ -6,6 +6,8 @@
 #include <cmath>
 #include <vector>
 
+#include "dbss/encoder/point_distances.h"
+
 namespace dbss {
 
 namespace {
@@ -27,6 +29,83 @@ bool line_hits(const V& p, const V& n, const V& a, const V& b, const V& c, doubl
   t = inv * e2.dot(q);
   return true;
 }
+
+// Next to a crease (one-sided sampling on): the surface along the line as
+// two planes meeting at the feature.  The kWedgePoints points nearest p are
+// split by their normals into two sides; when the sides meet at more than
+// the one-sided angle and each is flat, the line's hit on each side's plane
+// counts only where it lies on that side's half of the wedge (beyond the
+// other plane, on the side its own points are); of two such, the nearer.
+// A fitted height field over both sides rounds the feature within a point
+// spacing or two of it (measured on the cube: the level-3 vertices there
+// sat 0.005-0.01 inside, 70% of the level's error); the planes do not.
+constexpr size_t kWedgePoints = 32;
+bool wedge_hit(const PointIndex& index, const double pd[3], const double nd[3], const PointSides& sides, double& t_out) {
+  const PointCloud& pc = index.points();
+  const float q[3] = {static_cast<float>(pd[0]), static_cast<float>(pd[1]), static_cast<float>(pd[2])};
+  uint32_t idx[kWedgePoints];
+  float dist2[kWedgePoints];
+  const size_t found = index.nearest_k(q, kWedgePoints, idx, dist2);
+  if (found < kWedgePoints) return false;
+  const double radius = std::sqrt(double{dist2[found - 1]});
+  const auto normal = [&](uint32_t i) {
+    const float* m = sides.normals->data() + 3 * size_t{i};
+    return V(m[0], m[1], m[2]);
+  };
+  const auto least_aligned = [&](const V& s) {
+    V best = normal(idx[0]);
+    double best_c = INFINITY;
+    for (size_t j = 0; j < found; ++j)
+      if (const double c = std::abs(normal(idx[j]).dot(s)); c < best_c) best_c = c, best = normal(idx[j]);
+    return best;
+  };
+  V seed[2];
+  seed[1] = least_aligned(normal(idx[0]));
+  seed[0] = least_aligned(seed[1]);
+  if (std::abs(seed[0].dot(seed[1])) >= sides.min_cos) return false;  // one sheet here
+  std::vector<uint32_t> group[2];
+  for (size_t j = 0; j < found; ++j) {
+    const V m = normal(idx[j]);
+    group[std::abs(m.dot(seed[0])) >= std::abs(m.dot(seed[1])) ? 0 : 1].push_back(idx[j]);
+  }
+  PointPlane fit[2];
+  for (int round = 0; round < 2; ++round) {
+    for (int k = 0; k < 2; ++k) {
+      if (group[k].size() < 6) return false;
+      fit[k] = fit_plane(pc, group[k].data(), group[k].size());
+    }
+    if (round == 1) break;
+    group[0].clear(), group[1].clear();
+    for (size_t j = 0; j < found; ++j) {
+      const V x(pc.xyz[3 * size_t{idx[j]}], pc.xyz[3 * size_t{idx[j]} + 1], pc.xyz[3 * size_t{idx[j]} + 2]);
+      double d[2];
+      for (int k = 0; k < 2; ++k)
+        d[k] = std::abs((x - V(fit[k].point[0], fit[k].point[1], fit[k].point[2])).dot(V(fit[k].normal[0], fit[k].normal[1], fit[k].normal[2])));
+      group[d[0] <= d[1] ? 0 : 1].push_back(idx[j]);
+    }
+  }
+  V c[2], m[2];
+  for (int k = 0; k < 2; ++k) {
+    // Flat sides, each a patch (not the strip of points along the line).
+    if (std::sqrt(std::max(0.0, fit[k].variance[0])) > 0.05 * radius) return false;
+    if (fit[k].variance[1] < std::pow(0.1 * radius, 2)) return false;
+    c[k] = V(fit[k].point[0], fit[k].point[1], fit[k].point[2]), m[k] = V(fit[k].normal[0], fit[k].normal[1], fit[k].normal[2]);
+  }
+  if (std::abs(m[0].dot(m[1])) >= sides.min_cos) return false;
+  const V p(pd[0], pd[1], pd[2]), n(nd[0], nd[1], nd[2]);
+  bool hit = false;
+  for (int k = 0; k < 2; ++k) {
+    const double nm = n.dot(m[k]);
+    if (std::abs(nm) < 0.2) continue;  // the line runs along this side
+    const double t = (c[k] - p).dot(m[k]) / nm;
+    const V x = p + t * n;
+    const int o = 1 - k;
+    // On this side's half-plane: on the same side of the other plane as this side's points.
+    if ((x - c[o]).dot(m[o]) * (c[k] - c[o]).dot(m[o]) < 0) continue;
+    if (!hit || std::abs(t) < std::abs(t_out)) t_out = t, hit = true;
+  }
+  return hit;
+}
 }  // namespace
 
 Sample sample_displacement(const PointIndex& index, const double p[3], const double n[3], double radius,
@@ -44,6 +123,7 @@ Sample sample_displacement(const PointIndex& index, const double pd[3], const do
   // Points inside the cylinder: horizontal distance to the line under
   // `radius`, vertical offset along it under `half_length`.
   std::vector<uint32_t>& near = scratch.near;
+  const PointSides* const original_sides = sides;
   const float q[3] = {static_cast<float>(pd[0]), static_cast<float>(pd[1]), static_cast<float>(pd[2])};
   index.within(q, static_cast<float>(std::sqrt(radius * radius + half_length * half_length)), near);
   using Cand = SampleScratch::Candidate;
@@ -83,6 +163,15 @@ Sample sample_displacement(const PointIndex& index, const double pd[3], const do
     out.distance = std::clamp(d, -half_length, half_length);
     return out;
   };
+  if (const PointSides* wedge = original_sides; wedge && wedge->wedge) {
+    double t = 0;
+    if (wedge_hit(index, pd, nd, *wedge, t) && std::abs(t) <= half_length) {
+      out.source = SampleSource::plane;
+      out.fitted = true;
+      out.distance = t;
+      return out;
+    }
+  }
   if (cyl.size() >= 3) {
     // Candidate triangles from the points nearest the line; the hit nearest
     // to the vertex wins, so the closest sheet of a thin part is taken.

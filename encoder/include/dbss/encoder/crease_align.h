@@ -23,6 +23,8 @@ struct AlignStats {
   size_t snapped = 0;          // vertices moved onto a line or corner
   size_t flips = 0;            // edges flipped to join two vertices of one line
   size_t splits = 0;           // edges split where a line crosses them
+  size_t collapses = 0;        // vertices beside a line merged into their neighbour on it
+  size_t relaxed = 0;          // moves of flat-face vertices towards their neighbours' mean, in the face
 };
 
 // For each vertex of `mesh` (an oriented manifold, closed or open), the
@@ -31,8 +33,14 @@ struct AlignStats {
 // options.angle_degrees and each group is flat (options.flatness), the
 // vertex moves onto the planes' line (or their common point) if that is
 // within a third of its shortest edge and no triangle turns over or
-// becomes a sliver.  Then edges whose quad joins two vertices of the same
-// line, along the line, are flipped to that diagonal.  Topology (genus,
+// becomes a sliver.  With options.collapse, a vertex whose move was refused
+// is merged into its neighbour on the same line when the collapse keeps the
+// mesh a manifold (link condition) and its triangles unturned.  With
+// options.relax (and a vertex moved), the vertices of flat faces move in
+// their face's plane towards their neighbours' mean (the surface is the
+// same, the triangles beside a line more even).  Then edges whose quad
+// joins two vertices of the same line, along the line, are flipped to that
+// diagonal.  Topology (genus,
 // boundary) is unchanged.  `chains` (may be null) gets the interior edges
 // (u < w, sorted) joining two moved vertices of one line along it: the
 // crease edges; `corners` (may be null) the vertices moved onto a corner.

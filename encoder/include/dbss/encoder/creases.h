@@ -38,6 +38,18 @@ struct CreaseOptions {
   // level-3 error from 1.67e-4 to 2.23e-4 of the diagonal (Hausdorff 3.0%
   // to 4.6%).
   bool split = false;
+  // Merge a vertex beside a line, whose move onto it was refused, into its
+  // neighbour on the line (crease_align.h).  Off: measured
+  // (bench/crease_bench.md, fifth session) it halves the cube's darts (110
+  // -> 58) but raises the anchor's level-1 error 4.2e-4 -> 6.4e-4 and its
+  // level 3 3.8e-4 -> 4.6e-4 (curved feature lines), and the cube's level 1
+  // without the wedge sampling too.
+  bool collapse = false;
+  // Sample next to a crease from the two sides' planes (sampling.cpp's
+  // wedge), not from a surface fit over both.
+  bool wedge = true;
+  // Relax the flat faces' vertices in their plane after the alignment (crease_align.h).
+  bool relax = true;
 };
 
 struct CreaseStats {
@@ -50,7 +62,7 @@ struct CreaseStats {
   double max_snap = 0;     // largest move, model units
   // The control mesh's alignment to the feature lines before the test
   // (crease_align.h): counts of its vertices moved and edges flipped.
-  size_t aligned = 0, align_flips = 0, align_splits = 0;
+  size_t aligned = 0, align_flips = 0, align_splits = 0, align_collapses = 0, align_relaxed = 0;
   size_t chain_edges = 0;  // tagged as joining two aligned vertices along their line
 };
 

@@ -28,6 +28,7 @@ struct LevelEncodeOptions {
   unsigned threads = 1;
   std::function<void(uint32_t level)> on_level;  // called as each level starts; may be empty
   format::Creases creases;  // the control mesh's crease tags (empty: none), as the file holds them
+  bool wedge = true;        // with creases: CreaseOptions::wedge
 };
 
 struct LevelStats {

@@ -28,6 +28,8 @@ struct FitScratch {
 struct PointSides {
   const std::vector<float>* normals = nullptr;
   double min_cos = 0;
+  // Next to a feature, the line's hit on the two sides' planes (sampling.cpp).
+  bool wedge = true;
   bool agrees(uint32_t i, const double n[3]) const {
     const float* m = normals->data() + 3 * size_t{i};
     return std::abs(m[0] * n[0] + m[1] * n[1] + m[2] * n[2]) >= min_cos;
