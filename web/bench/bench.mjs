@@ -22,7 +22,7 @@ const levels = (params.get('levels') ?? '3,4,5').split(',').map(Number);
 const out = document.getElementById('out');
 
 // Timing.  A sample runs a decode `reps` times in a row, enough to last
-// >= 20 ms, and gives the time per call: the browser's clock is coarse (0.1
+// >= 150 ms of CPU time (see calibrate), and gives the time per call: the browser's clock is coarse (0.1
 // ms steps), and with run.mjs's CPU clock (window.dbssCpuNs, the renderer
 // thread's CPU time read by node between samples) each reading costs a
 // round trip whose tail the sample counts.  Each side is warmed up and
@@ -30,15 +30,18 @@ const out = document.getElementById('out');
 // build], then the reverse order) so that a busy machine slows all of them
 // alike; each row reports every side's median and quartiles, and the median
 // of the per-round ratios (draco3d / dbss of samples taken back to back).
-function calibrate(fn) {
+// Warms fn up, then doubles reps until a sample lasts >= 150 ms on the
+// clock the samples use.  Why so long: each CPU clock reading is a round
+// trip to node that costs the renderer several ms of its own CPU time
+// (about 7 ms measured here); `overheadMs`, the median of empty samples,
+// is subtracted from every sample, and at 150 ms what is left of its
+// spread is a few percent of a sample, on both sides alike.
+let overheadMs = 0;
+async function calibrate(fn) {
   for (let i = 0; i < 3; ++i) fn();  // warm up: compile tiers, grow memory
   let reps = 1;
-  for (;;) {
-    const t = performance.now();
-    for (let i = 0; i < reps; ++i) fn();
-    if (performance.now() - t >= 20 || reps >= 4096) return reps;
-    reps *= 2;
-  }
+  while ((await sample(fn, reps)) * reps < (window.dbssCpuNs ? 150 : 20) && reps < 65536) reps *= 2;
+  return reps;
 }
 // With window.dbssCpuNs (run.mjs provides it), a sample is CPU time of the
 // page's thread; else wall time.
@@ -46,7 +49,7 @@ async function sample(fn, reps) {
   if (window.dbssCpuNs) {
     const c = await window.dbssCpuNs();
     for (let i = 0; i < reps; ++i) fn();
-    return (await window.dbssCpuNs() - c) / 1e6 / reps;
+    return ((await window.dbssCpuNs() - c) / 1e6 - overheadMs) / reps;
   }
   const t = performance.now();
   for (let i = 0; i < reps; ++i) fn();
@@ -84,6 +87,10 @@ async function run() {
   probe.push(file);
   const draco = await DracoDecoderModule({ wasmBinary: await (await fetch('../node_modules/draco3d/draco_decoder.wasm')).arrayBuffer() });
   const rows = [];
+  // What one clock reading pair costs a sample (an empty sample, ms).
+  const empty = [];
+  for (let i = 0; i < 15; ++i) empty.push(await sample(() => {}, 1));
+  overheadMs = quantile(empty, 0.5);
   for (const L of levels) {
     const prefix = file.subarray(0, levelEnd(probe, L));
     const drc = new Int8Array(await (await fetch(params.get('drc').replace('{L}', L))).arrayBuffer());
@@ -107,7 +114,7 @@ async function run() {
     const mineInfo = {}, otherInfo = {};
     const sides = [{ fn: dbssCall(module, prefix, L, mineInfo), ms: [] }, { fn: dracoCall, ms: [] }];
     if (otherModule) sides.push({ fn: dbssCall(otherModule, prefix, L, otherInfo), ms: [] });
-    for (const s of sides) s.reps = calibrate(s.fn);
+    for (const s of sides) s.reps = await calibrate(s.fn);
     const ratios = [];
     for (let r = 0; r < samples; ++r) {
       // Turns in both orders, so that neither side always follows the other.
@@ -120,7 +127,7 @@ async function run() {
       dracoVertices, dracoTriangles, hash, other: otherModule ? stats(sides[2].ms) : undefined, otherHash: otherInfo.hash });
   }
   probe.dispose();
-  window.benchResult = { rows, userAgent: navigator.userAgent,
+  window.benchResult = { rows, userAgent: navigator.userAgent, emptySampleMs: quantile(empty, 0.5),
     clock: window.dbssCpuNs ? "CPU time of the renderer's main thread" : 'wall time (performance.now)' };
   out.textContent = JSON.stringify(window.benchResult, null, 1);
 }

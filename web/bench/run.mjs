@@ -123,8 +123,8 @@ const f2 = (x) => x.toFixed(2);
 const mq = (st, n) => pad(`${f2(st.median)} (${f2(st.q1)}-${f2(st.q3)})`, n);
 const r0 = res.rows[0];
 console.log(`${res.userAgent.match(/Chrome\/[\d.]+/)?.[0] ?? 'Chromium'}, headless, one thread; ${file.replace(repo, '')}; ` +
-  `median (quartiles) of ${r0.dbss.n} samples per side taken in turns, each sample the mean of enough calls to last >= 20 ms; ` +
-  `${res.clock}`);
+  `median (quartiles) of ${r0.dbss.n} samples per side taken in turns, each sample the mean of enough calls to take >= 150 ms; ` +
+  `${res.clock}; the ${(res.emptySampleMs).toFixed(1)} ms an empty sample costs taken off each sample`);
 if (compareDir) console.log(`other: the module in ${compareDir}`);
 console.log(`level  triangles | dbss bytes        dbss ms        | draco bytes     draco3d ms       | draco3d / dbss per round${other ? ` | dbss ${other} ms` : ''}`);
 res.rows.forEach((r) => {
