@@ -12,7 +12,7 @@
 // ?dbss=URL&levels=3,4,5&drc=URL_PATTERN (with {L} for the level)
 //  &wasm=URL of the dbss module (default build-web/dist/dbss_wasm.mjs)
 //  &other=URL of another build of it, timed the same way (optional)
-//  &samples=N (default 31)
+//  &samples=N (default 21)
 import { loadModule, StreamingDecoder } from '../dbss.mjs';
 import { levelEnd } from '../loader.mjs';
 import { fnv1a64 } from '../hash.mjs';
@@ -81,7 +81,7 @@ function dbssCall(module, prefix, L, info) {
 async function run() {
   const module = await loadModule(params.get('wasm') ?? undefined);
   const otherModule = params.get('other') ? await loadModule(params.get('other')) : null;
-  const samples = Number(params.get('samples') ?? 31);
+  const samples = Number(params.get('samples') ?? 21);
   const file = new Uint8Array(await (await fetch(params.get('dbss'))).arrayBuffer());
   const probe = new StreamingDecoder(module);
   probe.push(file);

@@ -49,7 +49,7 @@ for (const L of levels) {
 
 const scalar = process.argv.includes('--scalar');
 const samplesArg = process.argv.indexOf('--samples');
-const samples = samplesArg > 0 ? Number(process.argv[samplesArg + 1]) : 31;
+const samples = samplesArg > 0 ? Number(process.argv[samplesArg + 1]) : 21;
 const wall = process.argv.includes('--wall');
 const compareArg = process.argv.indexOf('--compare');
 const compareDir = compareArg > 0 ? resolve(process.argv[compareArg + 1]) : null;
