@@ -114,6 +114,34 @@ class Decoder {
     return b;
   }
   uint32_t even() { return get(kHalf); }
+  // Decodes 0 bits of the adaptive probability p while they come, up to n
+  // of them: exactly bit(p) repeated until it would give a 1 (that bit is
+  // left for bit() to decode) or n are done, or a byte past the end was
+  // needed (overrun(), the last 0 counted).  Returns how many.  Why: a
+  // level past the points' density is mostly zeros in context 0, and this
+  // loop keeps the state in registers instead of going through the model
+  // and the general path for each (the same arithmetic, the same bits).
+  size_t zeros(uint16_t& p, size_t n) {
+    uint32_t range = range_, code = code_, prob = p;
+    size_t k = 0;
+    while (k < n) {
+      const uint32_t bound = (range >> kProbBits) * prob;
+      if (code >= bound) break;
+      range = bound;
+      prob += ((1u << kProbBits) - prob) >> kAdaptShift;  // adapt(p, 0)
+      ++k;
+      while (range < kTop) {
+        uint32_t next = 0;
+        if (at_ < s_.size()) next = s_[at_++];
+        else overrun_ = true;
+        range <<= 8;
+        code = (code << 8) | next;
+      }
+      if (overrun_) break;
+    }
+    range_ = range, code_ = code, p = static_cast<uint16_t>(prob);
+    return k;
+  }
   bool overrun() const { return overrun_; }
   size_t at() const { return at_; }
 
@@ -183,9 +211,15 @@ Status context_decode(std::span<const uint8_t> stream, size_t count, uint64_t at
   };
   Model m;
   Decoder d(stream);
-  q.resize(count);
+  q.assign(count, 0);  // zeros: the runs below skip their entries
   uint32_t prev1 = 0, prev2 = 0, prev_sign = 0;
   for (size_t i = 0; i < count; ++i) {
+    if (prev1 == 0 && prev2 == 0) {
+      // A run of zeros in context 0 (prev_sign is 0 here already).
+      i += d.zeros(m.zero[0], count - i);
+      if (d.overrun()) return overrun(i - 1);
+      if (i == count) break;
+    }
     const uint32_t c = context_of(prev1, prev2);
     int32_t v = 0;
     uint32_t mag = 0;

@@ -4,7 +4,9 @@
 // give the section's codes without a crash.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <random>
+#include <string>
 
 #include "dbss/format/reader.h"
 #include "dbss/format/writer.h"
@@ -182,4 +184,51 @@ TEST_CASE("context coding gives the spec's example streams") {
   level.q.assign(1000, 0);
   d = encode_level(level, 19).value();
   CHECK(std::vector<uint8_t>(d.begin() + 16, d.end()) == std::vector<uint8_t>(7, 0));
+}
+
+// The decoder takes runs of zeros in context 0 through a loop of its own
+// (Decoder::zeros): runs of every length from 1 to hundreds, a level that
+// starts and one that ends inside a run, values right after a run, and cuts
+// that end a stream inside a run, which must name the displacement the
+// general path would (the index never goes back as the cut grows).
+TEST_CASE("coding-2 runs of zeros round-trip and report cuts inside a run") {
+  for (uint32_t seed : {11u, 12u, 13u}) {
+    FileContents c = context_contents(seed, 40);
+    std::mt19937 rng(seed);
+    for (auto& level : c.levels) {
+      size_t i = 0;
+      while (i < level.q.size()) {
+        const size_t run = std::min<size_t>(level.q.size() - i, 1 + rng() % (rng() % 4 == 0 ? 400 : 12));
+        for (size_t k = 0; k < run; ++k) level.q[i++] = 0;
+        for (uint32_t k = rng() % 3; k > 0 && i < level.q.size(); --k)
+          level.q[i++] = static_cast<int32_t>(rng() % 61) - 30;
+      }
+    }
+    c.levels[0].q.back() = 0;   // ends inside a run
+    c.levels[1].q.front() = 7;  // starts with a value
+    const Reader r = read_all(serialize(c).value());
+    INFO("seed " << seed << ": " << r.status().to_string());
+    REQUIRE(r.complete());
+    for (uint32_t l = 1; l <= 3; ++l) CHECK(r.level(l) == c.levels[l - 1]);
+
+    const auto good = encode_level(c.levels[2], 19).value();
+    const std::vector<uint8_t> stream(good.begin() + 16, good.end());
+    const uint64_t stream_at = level_entry(read_all(with_stream(c, 3, stream)).toc(), 3).offset + 8 + 16;
+    long last_index = -1;
+    for (size_t n = 4; n < stream.size(); ++n) {
+      const std::vector<uint8_t> cut(stream.begin(), stream.begin() + static_cast<std::ptrdiff_t>(n));
+      const Reader rc = read_all(with_stream(c, 3, cut));
+      INFO("cut to " << n << ": " << rc.status().to_string());
+      CHECK(rc.levels_ready() == 2);
+      CHECK(rc.status().code() == ErrorCode::compression);
+      CHECK(rc.status().offset() == stream_at + n);
+      const std::string& m = rc.status().message();
+      const size_t hash = m.find('#');
+      REQUIRE(hash != std::string::npos);
+      const long index = std::stol(m.substr(hash + 1));
+      CHECK(index >= last_index);
+      CHECK(index < static_cast<long>(c.levels[2].q.size()));
+      last_index = index;
+    }
+  }
 }

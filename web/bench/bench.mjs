@@ -1,16 +1,18 @@
 // Decoding speed in the browser, one page, one thread: dbss's WebAssembly
 // decoder (the whole decode of level L from the file's bytes up to level
-// L's chunk: container, Draco control mesh, every level) against draco3d's
+// L's chunk: the bytes copied into the module, container and checksums,
+// the Draco control mesh, every level up to L) against draco3d's
 // WebAssembly decoder (npm) decoding the same level's mesh, made with
-// draco_encoder at its defaults.  Both end with positions and triangle
-// indices in their module's memory.  Best of several repetitions each, in
-// `rounds` rounds that take turns (dbss, the other dbss build, draco3d), so
-// that a busy machine slows all of them alike.
+// draco_encoder at its defaults (its bytes copied into its module, the
+// decode, positions and triangles copied into its memory as arrays).  Both
+// end with positions and triangle indices in their module's memory; a
+// fresh decoder each call on both sides.  Medians and quartiles of
+// `samples` samples per side, taken in turns (see calibrate and sample).
 //
 // ?dbss=URL&levels=3,4,5&drc=URL_PATTERN (with {L} for the level)
 //  &wasm=URL of the dbss module (default build-web/dist/dbss_wasm.mjs)
 //  &other=URL of another build of it, timed the same way (optional)
-//  &rounds=N (default 3)
+//  &samples=N (default 21)
 import { loadModule, StreamingDecoder } from '../dbss.mjs';
 import { levelEnd } from '../loader.mjs';
 import { fnv1a64 } from '../hash.mjs';
@@ -19,59 +21,81 @@ const params = new URLSearchParams(location.search);
 const levels = (params.get('levels') ?? '3,4,5').split(',').map(Number);
 const out = document.getElementById('out');
 
-// Best time per call over samples filling at least `budget` ms (at least 5
-// samples); each sample repeats fn enough times to last >= 5 ms, as the
-// browser's clock is coarse (0.1 ms steps).
-function best(fn, budget = 800) {
-  fn();  // warm up
+// Timing.  A sample runs a decode `reps` times in a row, enough to last
+// >= 150 ms of CPU time (see calibrate), and gives the time per call: the browser's clock is coarse (0.1
+// ms steps), and with run.mjs's CPU clock (window.dbssCpuNs, the renderer
+// thread's CPU time read by node between samples) each reading costs a
+// round trip whose tail the sample counts.  Each side is warmed up and
+// calibrated alone, then the samples alternate (dbss, draco3d, [other
+// build], then the reverse order) so that a busy machine slows all of them
+// alike; each row reports every side's median and quartiles, and the median
+// of the per-round ratios (draco3d / dbss of samples taken back to back).
+// Warms fn up, then doubles reps until a sample lasts >= 150 ms on the
+// clock the samples use.  Why so long: each CPU clock reading is a round
+// trip to node that costs the renderer several ms of its own CPU time
+// (about 7 ms measured here); `overheadMs`, the median of empty samples,
+// is subtracted from every sample, and at 150 ms what is left of its
+// spread is a few percent of a sample, on both sides alike.
+let overheadMs = 0;
+async function calibrate(fn) {
+  for (let i = 0; i < 3; ++i) fn();  // warm up: compile tiers, grow memory
   let reps = 1;
-  for (;;) {
-    const t = performance.now();
-    for (let i = 0; i < reps; ++i) fn();
-    if (performance.now() - t >= 5 || reps >= 1024) break;
-    reps *= 2;
-  }
-  let bestMs = Infinity, spent = 0;
-  for (let n = 0; n < 5 || spent < budget; ++n) {
-    const t = performance.now();
-    for (let i = 0; i < reps; ++i) fn();
-    const ms = performance.now() - t;
-    bestMs = Math.min(bestMs, ms / reps);
-    spent += ms;
-    if (n >= 100) break;
-  }
-  return bestMs;
+  while ((await sample(fn, reps)) * reps < (window.dbssCpuNs ? 150 : 20) && reps < 65536) reps *= 2;
+  return reps;
 }
+// With window.dbssCpuNs (run.mjs provides it), a sample is CPU time of the
+// page's thread; else wall time.
+async function sample(fn, reps) {
+  if (window.dbssCpuNs) {
+    const c = await window.dbssCpuNs();
+    for (let i = 0; i < reps; ++i) fn();
+    return ((await window.dbssCpuNs() - c) / 1e6 - overheadMs) / reps;
+  }
+  const t = performance.now();
+  for (let i = 0; i < reps; ++i) fn();
+  return (performance.now() - t) / reps;
+}
+function quantile(xs, q) {
+  const s = [...xs].sort((a, b) => a - b), i = q * (s.length - 1), lo = Math.floor(i);
+  return lo + 1 < s.length ? s[lo] + (i - lo) * (s[lo + 1] - s[lo]) : s[lo];
+}
+const stats = (xs) => ({ median: quantile(xs, 0.5), q1: quantile(xs, 0.25), q3: quantile(xs, 0.75),
+  min: Math.min(...xs), max: Math.max(...xs), n: xs.length });
 
-// One dbss decode of level L from `prefix`: {ms, vertices, triangles, hash}.
-function timeDbss(module, prefix, L) {
-  let hash = '', vertices = 0, triangles = 0;
-  const ms = best(() => {
+// One dbss decode of level L from `prefix` (new decoder, bytes copied into
+// the module, control mesh, every level up to L, views of the result).
+function dbssCall(module, prefix, L, info) {
+  return () => {
     const d = new StreamingDecoder(module, { keepLevels: false });
     d.push(prefix);
     const v = d.level(L);
-    vertices = v.positions.length / 3;
-    triangles = v.indices.length / 3;
-    if (!hash) hash = fnv1a64(v.positions);
+    if (!info.hash) {
+      info.vertices = v.positions.length / 3;
+      info.triangles = v.indices.length / 3;
+      info.hash = fnv1a64(v.positions);
+    }
     d.dispose();
-  });
-  return { ms, vertices, triangles, hash };
+  };
 }
 
 async function run() {
   const module = await loadModule(params.get('wasm') ?? undefined);
   const otherModule = params.get('other') ? await loadModule(params.get('other')) : null;
-  const rounds = Number(params.get('rounds') ?? 3);
+  const samples = Number(params.get('samples') ?? 21);
   const file = new Uint8Array(await (await fetch(params.get('dbss'))).arrayBuffer());
   const probe = new StreamingDecoder(module);
   probe.push(file);
   const draco = await DracoDecoderModule({ wasmBinary: await (await fetch('../node_modules/draco3d/draco_decoder.wasm')).arrayBuffer() });
   const rows = [];
+  // What one clock reading pair costs a sample (an empty sample, ms).
+  const empty = [];
+  for (let i = 0; i < 15; ++i) empty.push(await sample(() => {}, 1));
+  overheadMs = quantile(empty, 0.5);
   for (const L of levels) {
     const prefix = file.subarray(0, levelEnd(probe, L));
     const drc = new Int8Array(await (await fetch(params.get('drc').replace('{L}', L))).arrayBuffer());
     let dracoVertices = 0, dracoTriangles = 0;
-    const timeDraco = () => best(() => {
+    const dracoCall = () => {
       const dec = new draco.Decoder(), mesh = new draco.Mesh();
       const st = dec.DecodeArrayToMesh(drc, drc.length, mesh);
       if (!st.ok()) throw new Error(`draco3d: ${st.error_msg()}`);
@@ -86,24 +110,25 @@ async function run() {
       draco._free(t);
       draco.destroy(mesh);
       draco.destroy(dec);
-    });
-    let mine = null, other = null, dracoMs = Infinity;
-    for (let r = 0; r < rounds; ++r) {
-      const a = timeDbss(module, prefix, L);
-      if (!mine || a.ms < mine.ms) mine = a;
-      if (otherModule) {
-        const b = timeDbss(otherModule, prefix, L);
-        if (!other || b.ms < other.ms) other = b;
-      }
-      dracoMs = Math.min(dracoMs, timeDraco());
+    };
+    const mineInfo = {}, otherInfo = {};
+    const sides = [{ fn: dbssCall(module, prefix, L, mineInfo), ms: [] }, { fn: dracoCall, ms: [] }];
+    if (otherModule) sides.push({ fn: dbssCall(otherModule, prefix, L, otherInfo), ms: [] });
+    for (const s of sides) s.reps = await calibrate(s.fn);
+    const ratios = [];
+    for (let r = 0; r < samples; ++r) {
+      // Turns in both orders, so that neither side always follows the other.
+      for (const s of r % 2 ? [...sides].reverse() : sides) s.ms.push(await sample(s.fn, s.reps));
+      ratios.push(sides[1].ms[r] / sides[0].ms[r]);
     }
-    const { vertices, triangles, hash } = mine;
-    const dbssMs = mine.ms;
-    rows.push({ level: L, vertices, triangles, dbssBytes: prefix.length, dbssMs, dracoBytes: drc.length, dracoMs,
-      dracoVertices, dracoTriangles, hash, otherMs: other?.ms, otherHash: other?.hash });
+    const { vertices, triangles, hash } = mineInfo;
+    rows.push({ level: L, vertices, triangles, dbssBytes: prefix.length, dbss: stats(sides[0].ms), dbssReps: sides[0].reps,
+      dracoBytes: drc.length, draco: stats(sides[1].ms), dracoReps: sides[1].reps, ratio: stats(ratios),
+      dracoVertices, dracoTriangles, hash, other: otherModule ? stats(sides[2].ms) : undefined, otherHash: otherInfo.hash });
   }
   probe.dispose();
-  window.benchResult = { rows, userAgent: navigator.userAgent };
+  window.benchResult = { rows, userAgent: navigator.userAgent, emptySampleMs: quantile(empty, 0.5),
+    clock: window.dbssCpuNs ? "CPU time of the renderer's main thread" : 'wall time (performance.now)' };
   out.textContent = JSON.stringify(window.benchResult, null, 1);
 }
 

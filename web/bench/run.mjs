@@ -2,7 +2,7 @@
 // Browser decoding benchmark: dbss WASM vs draco3d WASM in headless
 // Chromium, levels 3-5 of the shipped example encoded with 5 levels.
 //
-//   node web/bench/run.mjs [--scalar | --compare DIR] [--file FILE.dbss]
+//   node web/bench/run.mjs [--scalar | --compare DIR] [--file FILE.dbss] [--samples N] [--wall] [--json]
 //
 // FILE (default: the shipped example encoded with 5 levels) needs levels
 // 3-5.  Makes its files in build-web/bench/ with build/bin/dbss (encode, decode
@@ -14,7 +14,7 @@
 // --compare DIR times another web build of the module (DIR holds its
 // dbss_wasm.mjs and .wasm, e.g. one built from an older commit) the same way.
 import { spawnSync } from 'node:child_process';
-import { existsSync, mkdirSync, readFileSync, statSync } from 'node:fs';
+import { existsSync, mkdirSync, readFileSync, readdirSync, statSync } from 'node:fs';
 import { basename, dirname, join, resolve } from 'node:path';
 import { gzipSync } from 'node:zlib';
 import { fileURLToPath } from 'node:url';
@@ -48,6 +48,9 @@ for (const L of levels) {
 }
 
 const scalar = process.argv.includes('--scalar');
+const samplesArg = process.argv.indexOf('--samples');
+const samples = samplesArg > 0 ? Number(process.argv[samplesArg + 1]) : 21;
+const wall = process.argv.includes('--wall');
 const compareArg = process.argv.indexOf('--compare');
 const compareDir = compareArg > 0 ? resolve(process.argv[compareArg + 1]) : null;
 const other = scalar ? 'scalar' : compareDir ? 'other' : null;
@@ -55,9 +58,46 @@ const mounts = { ...repoMounts(repo, buildDir), '/bench-files/': work, '/bench-i
   '/other/': compareDir ?? join(buildDir, 'dist') };
 const { server, url } = await startServer({ mounts });
 const browser = await chromium.launch({ executablePath: process.env.DBSS_CHROMIUM ?? '/usr/bin/chromium', args: ['--no-sandbox'] });
+// CPU time, not wall time: on a shared machine the wall clock counts the
+// time other processes held the CPU (at a load average of 14 on 2 cores,
+// a 0.6 ms decode took 5 ms of wall time).  The page asks for the CPU time
+// of the renderer's main thread (where its JavaScript and WebAssembly run)
+// before and after each sample: nanoseconds from Linux's
+// /proc/PID/task/TID/schedstat, summed over every renderer this process started
+// (the idle ones add nothing).  --wall times with performance.now().
+function rendererMainThreads() {
+  const root = process.pid;  // playwright starts the browser as this process's child
+  if (!existsSync('/proc/self/schedstat')) return [];
+  const parent = new Map();
+  for (const d of readdirSync('/proc')) {
+    if (!/^\d+$/.test(d)) continue;
+    try { parent.set(Number(d), Number(readFileSync(`/proc/${d}/stat`, 'utf8').replace(/^.*\) /s, '').split(' ')[1])); } catch {}
+  }
+  const ours = (pid) => { for (let p = pid; p > 1; p = parent.get(p) ?? 0) if (p === root) return true; return false; };
+  // A renderer's main thread is the thread whose id is the process's.
+  const out = [];
+  for (const pid of parent.keys()) {
+    try {
+      if (ours(pid) && readFileSync(`/proc/${pid}/cmdline`, 'utf8').includes('--type=renderer'))
+        out.push(`/proc/${pid}/task/${pid}/schedstat`);
+    } catch {}
+  }
+  return out;
+}
 async function measure(otherWasm) {
   const page = await browser.newPage();
-  const q = new URLSearchParams({ dbss: `/bench-input/${basename(file)}`, drc: `/bench-files/${stem}-level{L}.drc`, levels: levels.join(',') });
+  if (!wall) {
+    let threads = null;
+    await page.exposeFunction('dbssCpuNs', () => {
+      threads ??= rendererMainThreads();
+      if (!threads.length) throw new Error('no renderer thread found for CPU time (use --wall)');
+      let ns = 0;
+      for (const f of threads) try { ns += Number(readFileSync(f, 'utf8').split(' ')[0]); } catch {}
+      return ns;
+    });
+  }
+  const q = new URLSearchParams({ dbss: `/bench-input/${basename(file)}`, drc: `/bench-files/${stem}-level{L}.drc`, levels: levels.join(','),
+    samples: String(samples) });
   if (otherWasm) q.set('other', otherWasm);
   await page.goto(`${url}/web/bench/?${q}`);
   await page.waitForFunction(() => window.benchResult, null, { timeout: 300000 });
@@ -78,15 +118,22 @@ await browser.close();
 server.close();
 
 const pad = (s, n) => String(s).padStart(n);
-console.log(`${res.userAgent.match(/Chrome\/[\d.]+/)?.[0] ?? 'Chromium'}, headless, one thread; ${file.replace(repo, '')}; best of repetitions`);
+const f2 = (x) => x.toFixed(2);
+// A median with its quartiles: "1.23 (1.20-1.31)".
+const mq = (st, n) => pad(`${f2(st.median)} (${f2(st.q1)}-${f2(st.q3)})`, n);
+const r0 = res.rows[0];
+console.log(`${res.userAgent.match(/Chrome\/[\d.]+/)?.[0] ?? 'Chromium'}, headless, one thread; ${file.replace(repo, '')}; ` +
+  `median (quartiles) of ${r0.dbss.n} samples per side taken in turns, each sample the mean of enough calls to take >= 150 ms; ` +
+  `${res.clock}; the ${(res.emptySampleMs).toFixed(1)} ms an empty sample costs taken off each sample`);
 if (compareDir) console.log(`other: the module in ${compareDir}`);
-console.log(`level  triangles |  dbss bytes  dbss ms | draco bytes  draco3d ms | draco3d / dbss${other ? ` | dbss ${other} ms  ratio` : ''}`);
-res.rows.forEach((r, i) => {
-  let line = `${pad(r.level, 5)} ${pad(r.triangles, 10)} | ${pad(r.dbssBytes, 11)} ${pad(r.dbssMs.toFixed(2), 8)} | ${pad(r.dracoBytes, 11)} ${pad(r.dracoMs.toFixed(2), 11)} | ${pad((r.dracoMs / r.dbssMs).toFixed(2) + 'x', 14)}`;
-  if (other) line += ` | ${pad(r.otherMs.toFixed(2), 12)} ${pad((r.dracoMs / r.otherMs).toFixed(2) + 'x', 6)}`;
+console.log(`level  triangles | dbss bytes        dbss ms        | draco bytes     draco3d ms       | draco3d / dbss per round${other ? ` | dbss ${other} ms` : ''}`);
+res.rows.forEach((r) => {
+  let line = `${pad(r.level, 5)} ${pad(r.triangles, 10)} | ${pad(r.dbssBytes, 10)} ${mq(r.dbss, 21)} | ${pad(r.dracoBytes, 11)} ${mq(r.draco, 22)} | ${mq(r.ratio, 24)}`;
+  if (other) line += ` | ${mq(r.other, 21)}`;
   console.log(line);
 });
 console.log('every level hashes as build/bin/dbss decodes it' + (other ? ` (the ${other} build too)` : ''));
+if (process.argv.includes('--json')) console.log(JSON.stringify(res.rows));
 
 // What a page ships, gzipped (-9).
 const gz = (p) => gzipSync(readFileSync(p), { level: 9 }).length;
