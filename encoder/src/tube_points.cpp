@@ -53,6 +53,8 @@ TubePoints sample_cut_tubes(const PointIndex& index, const std::vector<PointRim>
   out.points = index.points();
   if (!(spacing > 0)) return out;
   const PointCloud& pc = index.points();
+  const bool has_normals = pc.normals.size() == pc.xyz.size();
+  if (!has_normals) out.points.normals.clear();
   for (const auto& [ia, ib] : pairs) {
     const PointRim &ra = rims[ia], &rb = rims[ib];
     const double chord = len(sub(rb.centre, ra.centre));
@@ -79,6 +81,13 @@ TubePoints sample_cut_tubes(const PointIndex& index, const std::vector<PointRim>
       }
     }
     const double length = arc[kCurveSteps];
+    // A tube this scan lost is a small part of it (the bridging stage's
+    // pairs are under 6 radii apart): one that would take more points than
+    // the scan has is not one, and a non-finite size (a NaN radius passes
+    // every comparison of the pairing) is no size.  This also keeps the
+    // ring counts below in int.
+    const double expected = (length / spacing + 1) * (2 * std::numbers::pi * std::max(ra.radius, rb.radius) / spacing + 8);
+    if (!std::isfinite(expected) || !(ra.radius > 0) || !(rb.radius > 0) || expected > static_cast<double>(pc.size())) continue;
     const int rings = std::max(1, static_cast<int>(std::ceil(length / spacing)));
     const size_t before = out.points.size();
     for (int r = 0; r <= rings; ++r) {
@@ -107,6 +116,10 @@ TubePoints sample_cut_tubes(const PointIndex& index, const std::vector<PointRim>
         for (int a = 0; a < 3; ++a) d2 += std::pow(q[a] - double{pc.xyz[3 * near + a]}, 2);
         if (d2 < kClearance * kClearance * spacing * spacing) continue;
         out.points.xyz.insert(out.points.xyz.end(), q, q + 3);
+        // A cloud with normals keeps three per point: the ring's own,
+        // pointing out of the tube.
+        if (has_normals)
+          for (int a = 0; a < 3; ++a) out.points.normals.push_back(static_cast<float>(cs * u[a] + sn * v[a]));
       }
     }
     const size_t added = out.points.size() - before;

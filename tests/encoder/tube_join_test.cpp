@@ -83,6 +83,41 @@ TEST_CASE("tube points: a cut band's gap is sampled on the tube it cut, and nowh
   CHECK(widest < 0.45);
 }
 
+TEST_CASE("tube points: a cloud with normals keeps three per point, the added ones out of the tube; no tube past the scan's size") {
+  PointCloud c = cut_torus(0.35);
+  // The torus's own normals: from the tube's circle out through the point.
+  c.normals.resize(c.xyz.size());
+  for (size_t i = 0; i < c.size(); ++i) {
+    const double x = c.xyz[3 * i], y = c.xyz[3 * i + 1], z = c.xyz[3 * i + 2], rho = std::hypot(x, y);
+    const double cx = x / rho, cy = y / rho;
+    const double n[3] = {x - cx, y - cy, z}, l = std::hypot(n[0], n[1], n[2]);
+    for (int a = 0; a < 3; ++a) c.normals[3 * i + a] = static_cast<float>(n[a] / l);
+  }
+  const PointIndex index(c);
+  const std::vector<PointRim> rims = find_point_rims(index);
+  const auto pairs = tube_end_pairs(rims);
+  REQUIRE(pairs.size() == 1);
+  const double spacing = std::sqrt(std::numbers::pi / 6) * point_spacing(index, 6, 0.5);
+  const TubePoints t = sample_cut_tubes(index, rims, pairs, spacing);
+  REQUIRE(t.tubes == 1);
+  REQUIRE(t.points.normals.size() == t.points.xyz.size());
+  size_t outward = 0;
+  for (size_t i = c.size(); i < t.points.size(); ++i) {
+    const double x = t.points.xyz[3 * i], y = t.points.xyz[3 * i + 1], z = t.points.xyz[3 * i + 2], rho = std::hypot(x, y);
+    const double out[3] = {x - x / rho, y - y / rho, z};
+    double d = 0;
+    for (int a = 0; a < 3; ++a) d += out[a] * t.points.normals[3 * i + a];
+    outward += d > 0;
+  }
+  CHECK(outward > 0.95 * static_cast<double>(t.added));
+  // A spacing a hundredth of the scan's would ask for ~10^4 times the
+  // points of the gap, more than the scan has: no tube.
+  const TubePoints none = sample_cut_tubes(index, rims, pairs, spacing / 100);
+  CHECK(none.tubes == 0);
+  CHECK(none.points.size() == c.size());
+  CHECK(none.points.normals.size() == c.normals.size());
+}
+
 TEST_CASE("tube join: a triple torus whose carving capped a cut tube gets its handle back under --surface closed") {
   // The hole sweep's case (bench/scan_bench --hole-sweep): 15% of the area
   // from +x, 8,000 points, seed 5.  Before the join: genus 2, `topology`
