@@ -200,7 +200,9 @@ Result<TriangleMesh> control_mesh_from_mesh(const TriangleMesh& input, const Mes
                                             MeshControlStats* stats) {
   const MeshInfo before = mesh_counts(input);
   SimplifyStats ss;
-  auto simplified = simplify_mesh(input, target_faces, &ss);
+  SimplifyOptions so;
+  so.needle = 0.01;  // see SimplifyOptions::needle (issue 18)
+  auto simplified = simplify_mesh(input, target_faces, &ss, so);
   if (!simplified.ok()) return simplified.status();
   TriangleMesh m = std::move(simplified).value();
   const MeshInfo after = mesh_info(m);

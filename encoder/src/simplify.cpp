@@ -91,7 +91,7 @@ struct CostAbove {
 
 class Simplifier {
  public:
-  explicit Simplifier(const TriangleMesh& m) : tris_(m.triangles), alive_(m.triangle_count(), 1) {
+  Simplifier(const TriangleMesh& m, double needle) : tris_(m.triangles), alive_(m.triangle_count(), 1), needle_(needle) {
     const size_t n = m.vertex_count();
     pos_.resize(n);
     for (size_t v = 0; v < n; ++v) pos_[v] = Vec3(m.positions[3 * v], m.positions[3 * v + 1], m.positions[3 * v + 2]);
@@ -311,8 +311,10 @@ class Simplifier {
         const Vec3 after = (c[1] - c[0]).cross(c[2] - c[0]);
         const double la = after.norm(), lb = before.norm();
         if (la <= 0 || lb <= 0 || after.dot(before) < 0.5 * la * lb) return false;
+        // Needles: twice the area under needle_ times the longest side
+        // squared (see SimplifyOptions::needle).
         const double longest = std::max({(c[1] - c[0]).squaredNorm(), (c[2] - c[1]).squaredNorm(), (c[0] - c[2]).squaredNorm()});
-        if (la < 0.05 * longest) return false;  // smallest angle under about 2.9 degrees
+        if (la < needle_ * longest) return false;
       }
     return true;
   }
@@ -348,6 +350,7 @@ class Simplifier {
 
   std::vector<uint32_t> tris_;
   std::vector<uint8_t> alive_;
+  double needle_;  // SimplifyOptions::needle
   std::vector<Vec3> pos_;
   std::vector<std::vector<uint32_t>> faces_of_;
   std::vector<uint32_t> stamp_;
@@ -371,9 +374,10 @@ uint32_t default_control_faces(uint32_t shell_faces, int64_t genus) {
   return static_cast<uint32_t>(f & ~int64_t{1});
 }
 
-Result<TriangleMesh> simplify_mesh(const TriangleMesh& in, uint32_t target_faces, SimplifyStats* stats) {
+Result<TriangleMesh> simplify_mesh(const TriangleMesh& in, uint32_t target_faces, SimplifyStats* stats,
+                                   const SimplifyOptions& options) {
   if (in.triangle_count() == 0) return Status(ErrorCode::invalid_argument, "simplify: empty mesh");
-  Simplifier s(in);
+  Simplifier s(in, options.needle);
   s.run(target_faces);
   TriangleMesh out = s.result();
   if (stats) {
