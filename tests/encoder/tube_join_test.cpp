@@ -83,7 +83,7 @@ TEST_CASE("tube points: a cut band's gap is sampled on the tube it cut, and nowh
   CHECK(widest < 0.45);
 }
 
-TEST_CASE("tube points: a cloud with normals keeps three per point, the added ones out of the tube; no tube past the scan's size") {
+TEST_CASE("tube points: a cloud with normals keeps three per point (the added ones out of the tube) and a tube bigger than the scan is not sampled") {
   PointCloud c = cut_torus(0.35);
   // The torus's own normals: from the tube's circle out through the point.
   c.normals.resize(c.xyz.size());
