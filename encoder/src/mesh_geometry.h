@@ -1,5 +1,5 @@
 // Small vector helpers and smoothing targets shared by the mesh repair files
-// (mesh_folds.cpp, self_intersections.cpp, mesh_adjacency.cpp).
+// (mesh_folds.cpp, self_intersections.cpp, mesh_adjacency.cpp) and tube_points.cpp.
 #pragma once
 
 #include <array>
