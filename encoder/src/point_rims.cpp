@@ -8,12 +8,13 @@
 #include <tuple>
 
 #include "dbss/encoder/point_distances.h"
+#include "mesh_geometry.h"
 
 namespace dbss {
 
 namespace {
 
-using V3 = std::array<double, 3>;
+using mesh_geometry::V3, mesh_geometry::sub, mesh_geometry::dot, mesh_geometry::cross;
 
 // Neighbours a point is judged by (itself included).
 constexpr size_t kNeighbours = 24;
@@ -43,9 +44,6 @@ constexpr double kMinFacing = 0.4;
 // Longest gap between a pair's centres, in larger radii.
 constexpr double kMaxGap = 6;
 
-V3 sub(V3 a, V3 b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-double dot(V3 a, V3 b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-V3 cross(V3 a, V3 b) { return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]}; }
 double len(V3 a) { return std::sqrt(dot(a, a)); }
 V3 unit(V3 a) {
   const double l = len(a);
