@@ -152,6 +152,25 @@ std::vector<PointRim> find_point_rims(const PointIndex& index, size_t max_points
     r.centre = plane.point;
     r.axis = plane.normal;
     r.points = g.size();
+    {
+      // The tube's own direction is the one its wall's normals are all
+      // square to: the least spread of the normals (each taken both ways,
+      // so they centre on zero).  Each rim point lies a tube's radius from
+      // the line along it through the centre, however oblique the cut.
+      PointCloud both;
+      both.xyz.reserve(6 * g.size());
+      std::vector<uint32_t> all(2 * g.size());
+      for (uint32_t i : g)
+        for (double sign : {1.0, -1.0})
+          for (int a = 0; a < 3; ++a) both.xyz.push_back(static_cast<float>(sign * normal[i][a]));
+      std::iota(all.begin(), all.end(), 0u);
+      const V3 along = fit_plane(both, all.data(), all.size()).normal;
+      for (uint32_t i : g) {
+        const V3 d = sub(point(edge, i), r.centre);
+        const double t = dot(d, along);
+        r.tube_radius += len({d[0] - t * along[0], d[1] - t * along[1], d[2] - t * along[2]}) / static_cast<double>(g.size());
+      }
+    }
     V3 opening{0, 0, 0};
     for (uint32_t i : g) {
       r.radius += len(sub(point(edge, i), r.centre)) / static_cast<double>(g.size());
