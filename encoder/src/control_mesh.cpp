@@ -348,8 +348,10 @@ Result<ControlMeshStages> build_control_mesh(const PointIndex& index, const Cont
   stage("projecting");
   t = Clock::now();
   // Smooth out any fold the collapses left, then project: the projection
-  // refuses moves that fold, so the control mesh ends fold-free.
-  s.untangled = untangle_folds(s.control);
+  // refuses moves that fold, so the control mesh ends fold-free.  (Coarse:
+  // the folded edges' vertices only, and no round that folds more; see
+  // mesh_folds.h.)
+  s.untangled = untangle_folds(s.control, 8, /*coarse=*/true);
   // Collapses can make distant sheets cross; projection below keeps the
   // mesh free of crossings only if it starts free of them.
   s.relaxed = relax_self_intersections(s.control);

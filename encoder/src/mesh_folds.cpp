@@ -127,24 +127,40 @@ size_t count_foldovers(const TriangleMesh& m, double max_angle_degrees) {
   return foldover_vertices(m, max_angle_degrees).size() / 2;
 }
 
-size_t untangle_folds(TriangleMesh& m, int rounds) {
+size_t untangle_folds(TriangleMesh& m, int rounds, bool coarse) {
   const Adjacency adj = vertex_adjacency(m);
   const Rim rim = rim_neighbours(m);
   size_t met = 0;
-  for (int round = 0; round < rounds; ++round) {
-    const std::vector<uint32_t> folded = foldover_vertices(m);
-    if (folded.empty()) break;
+  std::vector<uint32_t> folded = foldover_vertices(m);
+  std::vector<uint32_t> ring;
+  std::vector<float> was;
+  for (int round = 0; round < rounds && !folded.empty(); ++round) {
     met += folded.size() / 2;
-    std::vector<uint32_t> ring;
+    ring.clear();
     for (uint32_t v : folded) {
       ring.push_back(v);
-      for (uint32_t i = adj.offset[v]; i < adj.offset[v + 1]; ++i) ring.push_back(adj.index[i]);
+      if (!coarse)
+        for (uint32_t i = adj.offset[v]; i < adj.offset[v + 1]; ++i) ring.push_back(adj.index[i]);
+    }
+    if (coarse) {
+      was.resize(3 * ring.size());
+      for (size_t i = 0; i < ring.size(); ++i)
+        for (int a = 0; a < 3; ++a) was[3 * i + a] = m.positions[3 * size_t{ring[i]} + a];
     }
     for (uint32_t v : ring) {  // in place: later vertices see earlier moves
       float to[3];
       if (smoothing_target(m, adj, rim, v, to))
         for (int a = 0; a < 3; ++a) m.positions[3 * size_t{v} + a] = to[a];
     }
+    if (!coarse && round + 1 == rounds) break;  // (the count after the last round is not needed)
+    std::vector<uint32_t> now = foldover_vertices(m);
+    if (coarse && now.size() > folded.size()) {
+      // Backwards: a vertex listed twice gets back where it was first.
+      for (size_t i = ring.size(); i-- > 0;)
+        for (int a = 0; a < 3; ++a) m.positions[3 * size_t{ring[i]} + a] = was[3 * i + a];
+      break;
+    }
+    folded = std::move(now);
   }
   return met;
 }

@@ -1,5 +1,6 @@
 // Small vector helpers and smoothing targets shared by the mesh repair files
-// (mesh_folds.cpp, self_intersections.cpp, mesh_adjacency.cpp) and tube_points.cpp.
+// (mesh_folds.cpp, self_intersections.cpp, mesh_adjacency.cpp), tube_points.cpp and
+// point_rims.cpp.
 #pragma once
 
 #include <array>

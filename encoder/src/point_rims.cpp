@@ -8,12 +8,13 @@
 #include <tuple>
 
 #include "dbss/encoder/point_distances.h"
+#include "mesh_geometry.h"
 
 namespace dbss {
 
 namespace {
 
-using V3 = std::array<double, 3>;
+using mesh_geometry::V3, mesh_geometry::sub, mesh_geometry::dot, mesh_geometry::cross;
 
 // Neighbours a point is judged by (itself included).
 constexpr size_t kNeighbours = 24;
@@ -43,9 +44,6 @@ constexpr double kMinFacing = 0.4;
 // Longest gap between a pair's centres, in larger radii.
 constexpr double kMaxGap = 6;
 
-V3 sub(V3 a, V3 b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-double dot(V3 a, V3 b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-V3 cross(V3 a, V3 b) { return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]}; }
 double len(V3 a) { return std::sqrt(dot(a, a)); }
 V3 unit(V3 a) {
   const double l = len(a);
@@ -154,6 +152,25 @@ std::vector<PointRim> find_point_rims(const PointIndex& index, size_t max_points
     r.centre = plane.point;
     r.axis = plane.normal;
     r.points = g.size();
+    {
+      // The tube's own direction is the one its wall's normals are all
+      // square to: the least spread of the normals (each taken both ways,
+      // so they centre on zero).  Each rim point lies a tube's radius from
+      // the line along it through the centre, however oblique the cut.
+      PointCloud both;
+      both.xyz.reserve(6 * g.size());
+      std::vector<uint32_t> all(2 * g.size());
+      for (uint32_t i : g)
+        for (double sign : {1.0, -1.0})
+          for (int a = 0; a < 3; ++a) both.xyz.push_back(static_cast<float>(sign * normal[i][a]));
+      std::iota(all.begin(), all.end(), 0u);
+      const V3 along = fit_plane(both, all.data(), all.size()).normal;
+      for (uint32_t i : g) {
+        const V3 d = sub(point(edge, i), r.centre);
+        const double t = dot(d, along);
+        r.tube_radius += len({d[0] - t * along[0], d[1] - t * along[1], d[2] - t * along[2]}) / static_cast<double>(g.size());
+      }
+    }
     V3 opening{0, 0, 0};
     for (uint32_t i : g) {
       r.radius += len(sub(point(edge, i), r.centre)) / static_cast<double>(g.size());

@@ -25,6 +25,14 @@ constexpr int kCurveSteps = 256;
 // The added points keep this many spacings from the scan's own.
 constexpr double kClearance = 0.75;
 
+// The rings' radius at a rim: the tube's (PointRim::tube_radius), never
+// more than the rim's mean radius.  A cut that crosses the tube obliquely
+// leaves a rim longer one way (0.45-0.79 of mean radius on the triple
+// torus's tubes of 0.3), and rings of that radius were fatter than the
+// tube they stand for: the rebuilt surface met the next torus (two
+// components, or genus 5) and the join was refused.
+double ring_radius(const PointRim& r) { return r.tube_radius > 0 ? std::min(r.radius, r.tube_radius) : r.radius; }
+
 // The Hermite curve of hole_bridge.cpp and point_rims.cpp's join test, from
 // a's centre to b's: it leaves a against a's axis and enters b along b's
 // (each axis points into the scanned tube its rim ends), tangents as long
@@ -99,7 +107,7 @@ TubePoints sample_cut_tubes(const PointIndex& index, const std::vector<PointRim>
       const double along = dot(u, tan);
       u = unit({u[0] - along * tan[0], u[1] - along * tan[1], u[2] - along * tan[2]});
       const V3 v = cross(tan, u);
-      const double radius = (1 - s_len / length) * ra.radius + s_len / length * rb.radius;
+      const double radius = (1 - s_len / length) * ring_radius(ra) + s_len / length * ring_radius(rb);
       const int around = std::max(8, static_cast<int>(std::ceil(2 * std::numbers::pi * radius / spacing)));
       // Alternate rings half a step round: a staggered sampling, like a
       // scan's, not a grid the carving's cells could fall between.

@@ -134,10 +134,12 @@ TEST_CASE("tube join: a triple torus whose carving capped a cut tube gets its ha
   CHECK(info.genus == 3);
   CHECK(e.tubes.tubes == 1);
   CHECK(e.tubes.area_share > 0);
-  // The hole is 15% of the area; the tube is round, of its rims' mean
-  // radius (0.45-0.57 here: the cuts are oblique across tubes of 0.3), so
-  // it comes out larger than what the scan missed (18%).
-  CHECK(e.tubes.area_share < 0.25);
+  // The hole is 15% of the area.  The rims' mean radius is 0.45-0.57 here
+  // (the cuts are oblique across tubes of 0.3); rings of that radius
+  // covered 18% of the area, rings of the rims' tube radius (PointRim::
+  // tube_radius) 15.4%.
+  INFO("tube area share " << e.tubes.area_share);
+  CHECK(e.tubes.area_share < 0.17);
   CHECK_FALSE(warned(e, "topology"));
   // The error on the scanned part within 1.3 times the complete scan's.
   auto w = encode_points(whole, closed_options(1));
@@ -151,6 +153,34 @@ TEST_CASE("tube join: a triple torus whose carving capped a cut tube gets its ha
   for (const auto& m : e.contents.metadata)
     if (m.key == "surface") said = m.value.find("joined across the gap") != std::string::npos;
   CHECK(said);
+}
+
+TEST_CASE("tube join: cuts across a junction of the triple torus are joined by tubes of the tube's radius, not the rims'") {
+  // The hole sweep's two pairs that were refused: rims of mean radius
+  // 0.45-0.79 where the cut crosses a tube of 0.3 obliquely next to a
+  // junction.  Rings of that radius met the next torus (two components,
+  // or genus 5) and the join was refused: genus 2, `topology` warned.
+  const dt::Shape& s = shape("triple torus");
+  const PointCloud whole = dt::sample_sdf(s.sdf, s.lo, s.hi, 8000, 5);
+  auto w = encode_points(whole, closed_options(1));
+  REQUIRE(w.ok());
+  for (const dt::Vec3& from : {dt::Vec3{0, 1, 0.3}, dt::Vec3{0.2, -1, -0.4}}) {
+    INFO("15% of the area from " << from[0] << " " << from[1] << " " << from[2]);
+    const PointCloud holed = dt::with_hole(whole, from, 0.15);
+    auto r = encode_points(holed, closed_options(1));
+    REQUIRE(r.ok());
+    const Encoding& e = r.value();
+    const MeshInfo info = mesh_info(finest(e));
+    CHECK(info.closed);
+    CHECK(info.components == 1);
+    CHECK(info.genus == 3);
+    CHECK(e.tubes.tubes == 1);
+    CHECK_FALSE(warned(e, "topology"));
+    const double joined = points_to_mesh(holed.xyz, finest(e)).mean;
+    const double complete = points_to_mesh(holed.xyz, finest(w.value())).mean;
+    INFO("scanned part to the joined surface " << joined << ", to the complete scan's " << complete);
+    CHECK(joined <= 1.3 * complete);
+  }
 }
 
 TEST_CASE("tube join: a torus cut right round its tube stays a torus under --surface closed") {

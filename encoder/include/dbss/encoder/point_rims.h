@@ -23,6 +23,12 @@ struct PointRim {
   // opening (into the scanned surface the rim bounds).
   std::array<double, 3> axis{};
   double radius = 0;  // mean distance of the rim's points from the centre
+  // The radius of the tube the rim ends, if it ends one: the rim's points'
+  // mean distance from the line through its centre along the direction
+  // its points' normals are all square to (the tube's).  A cut that crosses
+  // a tube of radius r obliquely leaves a rim r by r / sin(angle) in size,
+  // whose mean radius overstates the tube.
+  double tube_radius = 0;
   // Mean |cos| between the points' surface normals along the rim and the
   // axis: near 0 where the rim cuts across a tube's wall, near 1 round a
   // hole in a wall.

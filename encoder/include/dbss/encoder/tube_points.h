@@ -3,10 +3,11 @@
 // closed surface built from them caps the ends instead of joining them (a
 // lost handle), the gap is sampled along the tube a bridge would follow:
 // rings round the Hermite curve that leaves one rim against its axis and
-// enters the other along its own, their radius blended from one rim's to
-// the other's, as densely as the scan.  Carved with these points, the gap
-// is no gap: the surface keeps the handle the way it does on a complete
-// scan, without a stage of its own after the carving.
+// enters the other along its own, their radius blended from one rim's tube
+// radius (PointRim::tube_radius) to the other's, as densely as the scan.
+// Carved with these points, the gap is no gap: the surface keeps the handle
+// the way it does on a complete scan, without a stage of its own after the
+// carving.
 #pragma once
 
 #include <cstddef>
