@@ -84,10 +84,11 @@ struct Candidate {
   // Where the collapse puts the vertex, solved for once when pushed.
   Vec3 p;
 };
-// The heap holds a cost and the candidate's slot (16 bytes, not the
-// candidate's 56): sifting moves less memory.
+// The heap holds a cost, the push's sequence number and the candidate's
+// slot (16 bytes, not the candidate's 56): sifting moves less memory.
 struct HeapEntry {
   double cost;
+  uint32_t seq;
   uint32_t slot;
 };
 
@@ -243,7 +244,7 @@ class Simplifier {
       head_[x] = slot;
     }
     where_[slot] = static_cast<uint32_t>(heap_.size());
-    heap_.push_back({std::max(0.0, e), slot});
+    heap_.push_back({std::max(0.0, e), seq_++, slot});
     sift_up(heap_.size() - 1);
   }
 
@@ -271,16 +272,16 @@ class Simplifier {
     free_.push_back(slot);
   }
 
-  // The heap's order: by cost, ties by the edge's ends, then by slot (two
-  // candidates for one edge, from a mesh whose triangles disagree on its
-  // direction), so which collapse comes first never depends on the heap's
-  // layout.
-  bool before(const HeapEntry& a, const HeapEntry& b) const {
+  // The heap's order: by cost, ties first pushed first, so which collapse
+  // comes first never depends on the heap's layout.  Ties are common: a
+  // flat region's collapses all cost 0.  Taking them by the edge's ends
+  // instead let the lowest-numbered vertex swallow a flat disc whole; in
+  // push order they spread over it as the old heap's arbitrary order did.
+  // (The sequence number wraps after 2^32 pushes, a mesh of some 500M
+  // triangles; the order stays a valid one.)
+  static bool before(const HeapEntry& a, const HeapEntry& b) {
     if (a.cost != b.cost) return a.cost < b.cost;
-    const Candidate &x = pool_[a.slot], &y = pool_[b.slot];
-    if (x.end[0] != y.end[0]) return x.end[0] < y.end[0];
-    if (x.end[1] != y.end[1]) return x.end[1] < y.end[1];
-    return a.slot < b.slot;
+    return a.seq < b.seq;
   }
   void place(size_t i, const HeapEntry& e) {
     heap_[i] = e;
@@ -439,6 +440,7 @@ class Simplifier {
   std::vector<Candidate> pool_;  // the candidates, by HeapEntry::slot
   std::vector<uint32_t> where_;  // per slot, its index in heap_
   std::vector<uint32_t> free_;   // slots of candidates dropped
+  uint32_t seq_ = 0;             // pushes so far
   std::vector<uint32_t> head_;   // per vertex, the first candidate at it (kNone: none)
   std::vector<uint32_t> nu_, common_;
   std::vector<uint32_t> mark_;  // per vertex, see next_mark()
