@@ -1,6 +1,7 @@
 #include "dbss/encoder/cell_carving.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <future>
 #include <system_error>
@@ -51,61 +52,105 @@ CellGrid make_grid(const PointCloud& pc, int grid) {
   return g;
 }
 
-// Breadth-first from every border cell through face neighbours in state
-// `from`, turning every cell reached to `to` (which must not occur in the
-// grid yet): a cell's new state is its "seen" mark, so no separate array is
-// allocated, cleared and read back per flood.  The border cells are expanded
-// as they are seeded, with their coordinates at hand; only inner cells
-// enter the queue, and an inner cell has all six neighbours, so they are
-// found by adding strides, without the three divisions and six range checks
-// per cell that finding its coordinates would cost.  (What is reached does
-// not depend on the order cells are visited.)
+// Everything in state `from` that face neighbours in state `from` connect
+// to a border cell turns to `to` (which must not occur in the grid yet).
+//
+// Rows of cells along x are bit sets: a reached cell reaches its whole run
+// of passable cells in its row at once (a few shifts per 64 cells), and a
+// row hands its reached cells to the four rows beside it with one AND per
+// 64 cells; a row whose reached set grew is queued again.  What is reached
+// does not depend on the order, so this is the same set a cell-by-cell
+// breadth-first search finds (which it replaces: on the bunny 35k's grid
+// search, about 30 floods of up to 1.2M cells, 6 reads per cell and a
+// queue of 4 bytes per cell, freshly allocated each time).
 void flood_from_border(CellGrid& g, uint8_t from, uint8_t to) {
-  uint8_t* st = g.state.data();
-  // Reserved whole: a flood reaches most of the grid, and growing the queue
-  // by doubling copied it over and over.
-  std::vector<uint32_t> queue;
-  queue.reserve(g.state.size());
   const int nx = g.n[0], ny = g.n[1], nz = g.n[2];
-  const auto border = [&](int i, int j, int k) { return i == 0 || j == 0 || k == 0 || i == nx - 1 || j == ny - 1 || k == nz - 1; };
-  // An inner cell next to the border: reached (and queued) if passable.
-  auto visit_inner = [&](int i, int j, int k) {
-    if (i < 0 || j < 0 || k < 0 || i >= nx || j >= ny || k >= nz || border(i, j, k)) return;
-    const size_t id = g.index(i, j, k);
-    if (st[id] == from) {
-      st[id] = to;
-      queue.push_back(static_cast<uint32_t>(id));
+  const size_t words = (size_t(nx) + 63) / 64;
+  const size_t rows = size_t(ny) * nz;  // row r = k * ny + j, its cells at r * nx
+  std::vector<uint64_t> pass(rows * words, 0), reached(rows * words, 0);
+  uint8_t* st = g.state.data();
+  for (size_t r = 0; r < rows; ++r) {
+    const uint8_t* row = st + r * size_t(nx);
+    uint64_t* p = &pass[r * words];
+    for (size_t w = 0; w < words; ++w) {
+      const int end = std::min(nx, int(64 * w + 64));
+      uint64_t bits = 0;
+      for (int i = int(64 * w); i < end; ++i) bits |= uint64_t{row[i] == from} << (i & 63);
+      p[w] = bits;
+    }
+  }
+  // Grows row r's reached cells over their runs of passable ones: up the
+  // row, then down, each a prefix scan (shifts of 1, 2, 4 .. 32) per word
+  // with the end bit carried into the next word.
+  const auto fill = [&](size_t r) {
+    uint64_t* x = &reached[r * words];
+    const uint64_t* p = &pass[r * words];
+    uint64_t carry = 0;
+    for (size_t w = 0; w < words; ++w) {
+      uint64_t gen = x[w] | (carry & p[w]), run = p[w];
+      for (int s = 1; s < 64; s *= 2) gen |= run & (gen << s), run &= run << s;
+      x[w] = gen;
+      carry = gen >> 63;
+    }
+    carry = 0;
+    for (size_t w = words; w-- > 0;) {
+      uint64_t gen = x[w] | ((carry << 63) & p[w]), run = p[w];
+      for (int s = 1; s < 64; s *= 2) gen |= run & (gen >> s), run &= run >> s;
+      x[w] = gen;
+      carry = gen & 1;
     }
   };
+  std::vector<uint32_t> queue;
+  queue.reserve(rows);
+  std::vector<uint8_t> queued(rows, 0);
+  // The seeds: every passable border cell (whole rows at j or k's ends, a
+  // row's two end cells elsewhere).
+  const size_t last_word = size_t(nx - 1) >> 6;
+  const uint64_t last_bit = uint64_t{1} << ((nx - 1) & 63);
   for (int k = 0; k < nz; ++k)
-    for (int j = 0; j < ny; ++j)
-      for (int i = 0; i < nx; ++i) {
-        if (!border(i, j, k)) continue;
-        const size_t id = g.index(i, j, k);
-        if (st[id] == from) st[id] = to;
+    for (int j = 0; j < ny; ++j) {
+      const size_t r = size_t(k) * ny + j;
+      uint64_t* x = &reached[r * words];
+      const uint64_t* p = &pass[r * words];
+      if (j == 0 || k == 0 || j == ny - 1 || k == nz - 1) {
+        for (size_t w = 0; w < words; ++w) x[w] = p[w];
+      } else {
+        x[0] |= p[0] & 1;
+        x[last_word] |= p[last_word] & last_bit;
+        fill(r);
       }
-  // Border cells reach each other only through the border, which is seeded
-  // whole; they reach inner cells through these face neighbours.
-  for (int k = 0; k < nz; ++k)
-    for (int j = 0; j < ny; ++j)
-      for (int i = 0; i < nx; ++i) {
-        if (!border(i, j, k) || st[g.index(i, j, k)] != to) continue;
-        visit_inner(i - 1, j, k), visit_inner(i + 1, j, k), visit_inner(i, j - 1, k);
-        visit_inner(i, j + 1, k), visit_inner(i, j, k - 1), visit_inner(i, j, k + 1);
-      }
-  const size_t sx = 1, sy = size_t(nx), sz = size_t(nx) * ny;
-  const auto visit = [&](size_t id) {
-    if (st[id] == from) {
-      st[id] = to;
-      queue.push_back(static_cast<uint32_t>(id));
+      uint64_t any = 0;
+      for (size_t w = 0; w < words; ++w) any |= x[w];
+      if (any) queue.push_back(static_cast<uint32_t>(r)), queued[r] = 1;
     }
+  // A row hands its reached cells to the rows beside it in y and z.
+  const auto hand = [&](size_t from_row, size_t to_row) {
+    const uint64_t* x = &reached[from_row * words];
+    const uint64_t* p = &pass[to_row * words];
+    uint64_t* y = &reached[to_row * words];
+    uint64_t grew = 0;
+    for (size_t w = 0; w < words; ++w) {
+      const uint64_t add = x[w] & p[w] & ~y[w];
+      y[w] |= add;
+      grew |= add;
+    }
+    if (!grew) return;
+    fill(to_row);
+    if (!queued[to_row]) queued[to_row] = 1, queue.push_back(static_cast<uint32_t>(to_row));
   };
   for (size_t q = 0; q < queue.size(); ++q) {
-    const size_t id = queue[q];
-    // Neighbours on the border are reached already (if passable) or stop
-    // the flood (if not): visiting them changes nothing, so no check is
-    // needed for which of them are on it.
-    visit(id - sx), visit(id + sx), visit(id - sy), visit(id + sy), visit(id - sz), visit(id + sz);
+    const size_t r = queue[q];
+    queued[r] = 0;
+    const size_t j = r % size_t(ny), k = r / size_t(ny);
+    if (j > 0) hand(r, r - 1);
+    if (j + 1 < size_t(ny)) hand(r, r + 1);
+    if (k > 0) hand(r, r - ny);
+    if (k + 1 < size_t(nz)) hand(r, r + ny);
+  }
+  for (size_t r = 0; r < rows; ++r) {
+    uint8_t* row = st + r * size_t(nx);
+    for (size_t w = 0; w < words; ++w)
+      for (uint64_t b = reached[r * words + w]; b; b &= b - 1) row[64 * w + size_t(std::countr_zero(b))] = to;
   }
 }
 
