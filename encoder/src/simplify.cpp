@@ -81,11 +81,13 @@ struct Candidate {
   // (next[k]/prev[k]: the list of end[k]), so a collapse finds and unlinks
   // them without a search.
   uint32_t next[2], prev[2];
-  // Where the collapse puts the vertex, solved for once when pushed.
-  Vec3 p;
+  // (Where the collapse puts the vertex is solved for again when the
+  // candidate comes off the heap, to the same bits since nothing it depends
+  // on has changed: one solve per collapse instead of a 24-byte store per
+  // push, ten pushes per collapse on the bunny 35k.)
 };
 // The heap holds a cost, the push's sequence number and the candidate's
-// slot (16 bytes, not the candidate's 56): sifting moves less memory.
+// slot (16 bytes, not the candidate's 24): sifting moves less memory.
 struct HeapEntry {
   double cost;
   uint32_t seq;
@@ -130,8 +132,9 @@ class Simplifier {
       // until an edge at one of its ends collapses and pushes it again.
       const uint32_t slot = heap_[0].slot;
       const uint32_t u = pool_[slot].end[0], v = pool_[slot].end[1];
-      const Vec3 p = pool_[slot].p;
       drop(slot);
+      Vec3 p;
+      optimal(u, v, p);
       if (!collapse_ok(u, v, p)) continue;
       collapse(u, v, p);
     }
@@ -236,7 +239,7 @@ class Simplifier {
       free_.pop_back();
     }
     Candidate& c = pool_[slot];
-    c.end[0] = u, c.end[1] = v, c.p = p;
+    c.end[0] = u, c.end[1] = v;
     for (int k = 0; k < 2; ++k) {
       const uint32_t x = c.end[k], h = head_[x];
       c.next[k] = h, c.prev[k] = kNone;
