@@ -104,6 +104,7 @@ class Simplifier {
     for (uint32_t f = 0; f < m.triangle_count(); ++f)
       for (int k = 0; k < 3; ++k) faces_of_[tris_[3 * f + k]].push_back(f);
     head_.assign(n, kNone);
+    slot_at_.assign(n, kNone);
     q_.resize(n);
     for (uint32_t f = 0; f < m.triangle_count(); ++f) {
       const Vec3 n3 = face_cross(f);
@@ -238,14 +239,9 @@ class Simplifier {
       slot = free_.back();
       free_.pop_back();
     }
-    Candidate& c = pool_[slot];
-    c.end[0] = u, c.end[1] = v;
-    for (int k = 0; k < 2; ++k) {
-      const uint32_t x = c.end[k], h = head_[x];
-      c.next[k] = h, c.prev[k] = kNone;
-      if (h != kNone) pool_[h].prev[side(h, x)] = slot;
-      head_[x] = slot;
-    }
+    pool_[slot].end[0] = u, pool_[slot].end[1] = v;
+    link(slot, 0);
+    link(slot, 1);
     where_[slot] = static_cast<uint32_t>(heap_.size());
     heap_.push_back({std::max(0.0, e), seq_++, slot});
     sift_up(heap_.size() - 1);
@@ -256,13 +252,29 @@ class Simplifier {
 
   // Takes candidate `slot` out of the heap and its ends' lists, and frees it.
   void drop(uint32_t slot) {
+    unlink(slot, 0);
+    unlink(slot, 1);
+    unheap(slot);
+  }
+  // Takes candidate `slot` out of the list of its end k.
+  void unlink(uint32_t slot, int k) {
+    const Candidate& c = pool_[slot];
+    const uint32_t x = c.end[k], n = c.next[k], pr = c.prev[k];
+    if (pr != kNone) pool_[pr].next[side(pr, x)] = n;
+    else head_[x] = n;
+    if (n != kNone) pool_[n].prev[side(n, x)] = pr;
+  }
+  // Puts candidate `slot` first in the list of its end k.
+  void link(uint32_t slot, int k) {
     Candidate& c = pool_[slot];
-    for (int k = 0; k < 2; ++k) {
-      const uint32_t x = c.end[k], n = c.next[k], pr = c.prev[k];
-      if (pr != kNone) pool_[pr].next[side(pr, x)] = n;
-      else head_[x] = n;
-      if (n != kNone) pool_[n].prev[side(n, x)] = pr;
-    }
+    const uint32_t x = c.end[k], h = head_[x];
+    c.next[k] = h, c.prev[k] = kNone;
+    if (h != kNone) pool_[h].prev[side(h, x)] = slot;
+    head_[x] = slot;
+  }
+  // Takes candidate `slot` out of the heap and frees it (its lists are the
+  // caller's business).
+  void unheap(uint32_t slot) {
     const size_t i = where_[slot];
     const HeapEntry last = heap_.back();
     heap_.pop_back();
@@ -402,9 +414,22 @@ class Simplifier {
 
   void collapse(uint32_t u, uint32_t v, const Vec3& p) {
     // Every candidate at u or v is out of date (their quadrics and places
-    // change, and v goes): dropped here, u's pushed again below.
-    for (uint32_t x : {u, v})
-      while (head_[x] != kNone) drop(head_[x]);
+    // change, and v goes).  They are taken off u's and v's lists here and
+    // below become u's candidates again, updated in place: the same costs
+    // and push order as dropping them and pushing anew (so the same
+    // collapses), without freeing, relinking at their other end and
+    // re-inserting each one.
+    mine_.clear();
+    for (uint32_t x : {u, v}) {
+      for (uint32_t slot = head_[x]; slot != kNone;) {
+        const uint32_t next = pool_[slot].next[side(slot, x)];
+        // A second candidate for edge uv (triangles that disagree on its
+        // direction) is in both lists: taken once.
+        if (x == u || pool_[slot].end[0] != u) mine_.push_back(slot);
+        slot = next;
+      }
+      head_[x] = kNone;
+    }
     for (uint32_t f : faces_of_[v]) {
       bool has_u = false;
       for (int k = 0; k < 3; ++k) has_u |= tris_[3 * f + k] == u;
@@ -425,10 +450,55 @@ class Simplifier {
     rim_[u] |= rim_[v];
     pos_[u] = p;
     q_[u] += q_[v];
+    // One candidate per edge at u, each still linked at its other end w.
+    for (uint32_t slot : mine_) {
+      Candidate& c = pool_[slot];
+      int k = c.end[0] == u || c.end[0] == v ? 0 : 1;  // the end at u or v
+      const uint32_t w = c.end[1 - k];
+      if (w == u || w == v) {  // uv itself, a second time
+        unheap(slot);
+        continue;
+      }
+      if (slot_at_[w] != kNone) {  // u and v's common neighbour, a second time
+        unlink(slot, 1 - k);
+        unheap(slot);
+        continue;
+      }
+      slot_at_[w] = slot;
+      c.end[k] = u;
+      if (c.end[0] > c.end[1]) {  // ends in order again, links with them
+        std::swap(c.end[0], c.end[1]);
+        std::swap(c.next[0], c.next[1]);
+        std::swap(c.prev[0], c.prev[1]);
+        k = 1 - k;
+      }
+      link(slot, k);
+    }
     // Only edges at u change cost (their quadric and end moved); validity
-    // elsewhere is checked when an edge comes off the heap.
+    // elsewhere is checked when an edge comes off the heap.  In the order
+    // of w, each a fresh push: new cost, next sequence number.
     neighbours(u, nu_);
-    for (uint32_t w : nu_) push(std::min(u, w), std::max(u, w));
+    for (uint32_t w : nu_) {
+      const uint32_t slot = slot_at_[w];
+      if (slot == kNone) {  // refused before, or never pushed
+        push(std::min(u, w), std::max(u, w));
+        continue;
+      }
+      slot_at_[w] = kNone;
+      Vec3 p_unused;
+      const double e = optimal(pool_[slot].end[0], pool_[slot].end[1], p_unused);
+      const size_t i = where_[slot];
+      heap_[i] = {std::max(0.0, e), seq_++, slot};
+      sift_up(i);
+      sift_down(where_[slot]);
+    }
+    // (No edge at u leads elsewhere: its neighbours are u's and v's.)
+    for (uint32_t slot : mine_)
+      for (int k = 0; k < 2; ++k)
+        if (const uint32_t w = pool_[slot].end[k]; w != u && slot_at_[w] == slot) {
+          slot_at_[w] = kNone;
+          drop(slot);
+        }
   }
 
   std::vector<uint32_t> tris_;
@@ -445,6 +515,8 @@ class Simplifier {
   std::vector<uint32_t> free_;   // slots of candidates dropped
   uint32_t seq_ = 0;             // pushes so far
   std::vector<uint32_t> head_;   // per vertex, the first candidate at it (kNone: none)
+  std::vector<uint32_t> mine_;     // collapse(): the candidates at u and v
+  std::vector<uint32_t> slot_at_;  // collapse(): per neighbour of u, its candidate (kNone: none)
   std::vector<uint32_t> nu_, common_;
   std::vector<uint32_t> mark_;  // per vertex, see next_mark()
   uint32_t mark_top_ = 0;
