@@ -79,10 +79,15 @@ std::vector<std::pair<uint32_t, uint32_t>> crossings(const TriangleMesh& m, cons
     if (double(n[0]) * n[1] * n[2] <= 16.0 * nf + 64) break;
     cell *= 1.5;
   }
+  // By a product, not a quotient: bin ranges are computed some 20 times per
+  // triangle and search, and the divisions were most of a search that
+  // tries only marked triangles.  Any binning that grows with the
+  // coordinate finds the same pairs.
+  const double per_cell = 1 / cell;
   auto bin_range = [&](size_t f, int b0[3], int b1[3]) {
     for (int a = 0; a < 3; ++a) {
-      b0[a] = std::clamp(static_cast<int>((box[6 * f + a] - lo[a]) / cell), 0, n[a] - 1);
-      b1[a] = std::clamp(static_cast<int>((box[6 * f + 3 + a] - lo[a]) / cell), 0, n[a] - 1);
+      b0[a] = std::clamp(static_cast<int>((box[6 * f + a] - lo[a]) * per_cell), 0, n[a] - 1);
+      b1[a] = std::clamp(static_cast<int>((box[6 * f + 3 + a] - lo[a]) * per_cell), 0, n[a] - 1);
     }
   };
   const size_t nbins = size_t(n[0]) * n[1] * n[2];
