@@ -232,7 +232,10 @@ size_t relax_self_intersections(TriangleMesh& m, int rounds) {
   return moved;
 }
 
-size_t undo_self_intersections(TriangleMesh& m, const std::vector<float>& safe, int rounds) {
+namespace {
+// undo_self_intersections; with `only_moved`, the first search tries only
+// triangles with a corner away from its `safe` position.
+size_t undo_crossings(TriangleMesh& m, const std::vector<float>& safe, int rounds, bool only_moved) {
   size_t reverted = 0;
   // After the first round, a pair can cross only if a vertex of it moved
   // back in the last round or it crossed before that round (its corners
@@ -242,7 +245,16 @@ size_t undo_self_intersections(TriangleMesh& m, const std::vector<float>& safe, 
   std::vector<uint8_t> moved;
   std::vector<std::pair<uint32_t, uint32_t>> crossing;
   for (int round = 0; round <= rounds; ++round) {
-    if (round == 0) {
+    if (round == 0 && only_moved) {
+      marked.assign(m.triangle_count(), 0);
+      for (size_t f = 0; f < m.triangle_count(); ++f)
+        for (int k = 0; k < 3; ++k) {
+          const size_t v = m.triangles[3 * f + k];
+          marked[f] |= m.positions[3 * v] != safe[3 * v] || m.positions[3 * v + 1] != safe[3 * v + 1] ||
+                       m.positions[3 * v + 2] != safe[3 * v + 2];
+        }
+      crossing = crossings(m, &marked);
+    } else if (round == 0) {
       crossing = self_intersections(m);
     } else {
       marked.assign(m.triangle_count(), 0);
@@ -275,6 +287,15 @@ size_t undo_self_intersections(TriangleMesh& m, const std::vector<float>& safe, 
     }
   }
   return reverted;
+}
+}  // namespace
+
+size_t undo_self_intersections(TriangleMesh& m, const std::vector<float>& safe, int rounds) {
+  return undo_crossings(m, safe, rounds, false);
+}
+
+size_t undo_new_crossings(TriangleMesh& m, const std::vector<float>& safe, int rounds) {
+  return undo_crossings(m, safe, rounds, true);
 }
 
 }  // namespace dbss
