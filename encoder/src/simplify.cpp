@@ -69,8 +69,8 @@ struct Quadric {
 };
 
 // One candidate per edge that may still collapse, kept up to date: a
-// collapse removes the candidates at both its ends and adds those of the
-// merged vertex, so the heap never holds a stale entry.  (It used to: every
+// collapse gives the candidates at both its ends to the merged vertex with
+// their new costs (see collapse()), so the heap never holds a stale entry.  (It used to: every
 // push stayed until popped, stale or not, and nine of ten pops on the
 // bunny's 73k-triangle shell were stale, each a sift through a heap of some
 // 300k entries and a read of a candidate far away in memory.)
