@@ -1,6 +1,7 @@
 #include "dbss/encoder/cell_carving.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <future>
 #include <system_error>
@@ -51,61 +52,105 @@ CellGrid make_grid(const PointCloud& pc, int grid) {
   return g;
 }
 
-// Breadth-first from every border cell through face neighbours in state
-// `from`, turning every cell reached to `to` (which must not occur in the
-// grid yet): a cell's new state is its "seen" mark, so no separate array is
-// allocated, cleared and read back per flood.  The border cells are expanded
-// as they are seeded, with their coordinates at hand; only inner cells
-// enter the queue, and an inner cell has all six neighbours, so they are
-// found by adding strides, without the three divisions and six range checks
-// per cell that finding its coordinates would cost.  (What is reached does
-// not depend on the order cells are visited.)
+// Everything in state `from` that face neighbours in state `from` connect
+// to a border cell turns to `to` (which must not occur in the grid yet).
+//
+// Rows of cells along x are bit sets: a reached cell reaches its whole run
+// of passable cells in its row at once (a few shifts per 64 cells), and a
+// row hands its reached cells to the four rows beside it with one AND per
+// 64 cells; a row whose reached set grew is queued again.  What is reached
+// does not depend on the order, so this is the same set a cell-by-cell
+// breadth-first search finds (which it replaces: on the bunny 35k's grid
+// search, about 30 floods of up to 1.2M cells, 6 reads per cell and a
+// queue of 4 bytes per cell, freshly allocated each time).
 void flood_from_border(CellGrid& g, uint8_t from, uint8_t to) {
-  uint8_t* st = g.state.data();
-  // Reserved whole: a flood reaches most of the grid, and growing the queue
-  // by doubling copied it over and over.
-  std::vector<uint32_t> queue;
-  queue.reserve(g.state.size());
   const int nx = g.n[0], ny = g.n[1], nz = g.n[2];
-  const auto border = [&](int i, int j, int k) { return i == 0 || j == 0 || k == 0 || i == nx - 1 || j == ny - 1 || k == nz - 1; };
-  // An inner cell next to the border: reached (and queued) if passable.
-  auto visit_inner = [&](int i, int j, int k) {
-    if (i < 0 || j < 0 || k < 0 || i >= nx || j >= ny || k >= nz || border(i, j, k)) return;
-    const size_t id = g.index(i, j, k);
-    if (st[id] == from) {
-      st[id] = to;
-      queue.push_back(static_cast<uint32_t>(id));
+  const size_t words = (size_t(nx) + 63) / 64;
+  const size_t rows = size_t(ny) * nz;  // row r = k * ny + j, its cells at r * nx
+  std::vector<uint64_t> pass(rows * words, 0), reached(rows * words, 0);
+  uint8_t* st = g.state.data();
+  for (size_t r = 0; r < rows; ++r) {
+    const uint8_t* row = st + r * size_t(nx);
+    uint64_t* p = &pass[r * words];
+    for (size_t w = 0; w < words; ++w) {
+      const int end = std::min(nx, int(64 * w + 64));
+      uint64_t bits = 0;
+      for (int i = int(64 * w); i < end; ++i) bits |= uint64_t{row[i] == from} << (i & 63);
+      p[w] = bits;
+    }
+  }
+  // Grows row r's reached cells over their runs of passable ones: up the
+  // row, then down, each a prefix scan (shifts of 1, 2, 4 .. 32) per word
+  // with the end bit carried into the next word.
+  const auto fill = [&](size_t r) {
+    uint64_t* x = &reached[r * words];
+    const uint64_t* p = &pass[r * words];
+    uint64_t carry = 0;
+    for (size_t w = 0; w < words; ++w) {
+      uint64_t gen = x[w] | (carry & p[w]), run = p[w];
+      for (int s = 1; s < 64; s *= 2) gen |= run & (gen << s), run &= run << s;
+      x[w] = gen;
+      carry = gen >> 63;
+    }
+    carry = 0;
+    for (size_t w = words; w-- > 0;) {
+      uint64_t gen = x[w] | ((carry << 63) & p[w]), run = p[w];
+      for (int s = 1; s < 64; s *= 2) gen |= run & (gen >> s), run &= run >> s;
+      x[w] = gen;
+      carry = gen & 1;
     }
   };
+  std::vector<uint32_t> queue;
+  queue.reserve(rows);
+  std::vector<uint8_t> queued(rows, 0);
+  // The seeds: every passable border cell (whole rows at j or k's ends, a
+  // row's two end cells elsewhere).
+  const size_t last_word = size_t(nx - 1) >> 6;
+  const uint64_t last_bit = uint64_t{1} << ((nx - 1) & 63);
   for (int k = 0; k < nz; ++k)
-    for (int j = 0; j < ny; ++j)
-      for (int i = 0; i < nx; ++i) {
-        if (!border(i, j, k)) continue;
-        const size_t id = g.index(i, j, k);
-        if (st[id] == from) st[id] = to;
+    for (int j = 0; j < ny; ++j) {
+      const size_t r = size_t(k) * ny + j;
+      uint64_t* x = &reached[r * words];
+      const uint64_t* p = &pass[r * words];
+      if (j == 0 || k == 0 || j == ny - 1 || k == nz - 1) {
+        for (size_t w = 0; w < words; ++w) x[w] = p[w];
+      } else {
+        x[0] |= p[0] & 1;
+        x[last_word] |= p[last_word] & last_bit;
+        fill(r);
       }
-  // Border cells reach each other only through the border, which is seeded
-  // whole; they reach inner cells through these face neighbours.
-  for (int k = 0; k < nz; ++k)
-    for (int j = 0; j < ny; ++j)
-      for (int i = 0; i < nx; ++i) {
-        if (!border(i, j, k) || st[g.index(i, j, k)] != to) continue;
-        visit_inner(i - 1, j, k), visit_inner(i + 1, j, k), visit_inner(i, j - 1, k);
-        visit_inner(i, j + 1, k), visit_inner(i, j, k - 1), visit_inner(i, j, k + 1);
-      }
-  const size_t sx = 1, sy = size_t(nx), sz = size_t(nx) * ny;
-  const auto visit = [&](size_t id) {
-    if (st[id] == from) {
-      st[id] = to;
-      queue.push_back(static_cast<uint32_t>(id));
+      uint64_t any = 0;
+      for (size_t w = 0; w < words; ++w) any |= x[w];
+      if (any) queue.push_back(static_cast<uint32_t>(r)), queued[r] = 1;
     }
+  // A row hands its reached cells to the rows beside it in y and z.
+  const auto hand = [&](size_t from_row, size_t to_row) {
+    const uint64_t* x = &reached[from_row * words];
+    const uint64_t* p = &pass[to_row * words];
+    uint64_t* y = &reached[to_row * words];
+    uint64_t grew = 0;
+    for (size_t w = 0; w < words; ++w) {
+      const uint64_t add = x[w] & p[w] & ~y[w];
+      y[w] |= add;
+      grew |= add;
+    }
+    if (!grew) return;
+    fill(to_row);
+    if (!queued[to_row]) queued[to_row] = 1, queue.push_back(static_cast<uint32_t>(to_row));
   };
   for (size_t q = 0; q < queue.size(); ++q) {
-    const size_t id = queue[q];
-    // Neighbours on the border are reached already (if passable) or stop
-    // the flood (if not): visiting them changes nothing, so no check is
-    // needed for which of them are on it.
-    visit(id - sx), visit(id + sx), visit(id - sy), visit(id + sy), visit(id - sz), visit(id + sz);
+    const size_t r = queue[q];
+    queued[r] = 0;
+    const size_t j = r % size_t(ny), k = r / size_t(ny);
+    if (j > 0) hand(r, r - 1);
+    if (j + 1 < size_t(ny)) hand(r, r + 1);
+    if (k > 0) hand(r, r - ny);
+    if (k + 1 < size_t(nz)) hand(r, r + ny);
+  }
+  for (size_t r = 0; r < rows; ++r) {
+    uint8_t* row = st + r * size_t(nx);
+    for (size_t w = 0; w < words; ++w)
+      for (uint64_t b = reached[r * words + w]; b; b &= b - 1) row[64 * w + size_t(std::countr_zero(b))] = to;
   }
 }
 
@@ -183,52 +228,98 @@ void carve_closed(CellGrid& g) {
 // Returns how many cells were filled in this pass.
 size_t fill_critical(CellGrid& g) {
   size_t filled = 0;
+  const int nx = g.n[0], ny = g.n[1], nz = g.n[2];
+  // Which cells are air, a bit per cell along x rows, kept in step with
+  // the fills: whether a block has air and solid cells both is a few word
+  // operations per 64 blocks, where reading its eight cells was a third of
+  // the grid search's time.
+  const size_t words = (size_t(nx) + 63) / 64;
+  std::vector<uint64_t> air_bits(size_t(ny) * nz * words, 0);
+  for (size_t r = 0; r < size_t(ny) * nz; ++r)
+    for (int i = 0; i < nx; ++i)
+      air_bits[r * words + size_t(i >> 6)] |= uint64_t{g.state[r * size_t(nx) + size_t(i)] == CellGrid::kAir} << (i & 63);
   auto air = [&](int i, int j, int k) { return g.state[g.index(i, j, k)] == CellGrid::kAir; };
   auto fill = [&](int i, int j, int k) {
     g.state[g.index(i, j, k)] = CellGrid::kFilled;
+    air_bits[(size_t(k) * ny + j) * words + size_t(i >> 6)] &= ~(uint64_t{1} << (i & 63));
     ++filled;
   };
-  const size_t sy = size_t(g.n[0]), sz = size_t(g.n[0]) * g.n[1];
-  for (int k = 0; k + 1 < g.n[2]; ++k)
-    for (int j = 0; j + 1 < g.n[1]; ++j)
-      for (int i = 0; i + 1 < g.n[0]; ++i) {
-        // Most blocks are all air or all solid, where neither test below
-        // can fire: skipped after eight reads by stride.
-        const size_t id = g.index(i, j, k);
-        const uint8_t* st = g.state.data();
-        const int air_cells = (st[id] == CellGrid::kAir) + (st[id + 1] == CellGrid::kAir) + (st[id + sy] == CellGrid::kAir) +
-                              (st[id + sy + 1] == CellGrid::kAir) + (st[id + sz] == CellGrid::kAir) +
-                              (st[id + sz + 1] == CellGrid::kAir) + (st[id + sz + sy] == CellGrid::kAir) +
-                              (st[id + sz + sy + 1] == CellGrid::kAir);
-        if (air_cells == 0 || air_cells == 8) continue;
-        // The three 2x2 squares through cell (i,j,k) in the xy, xz and yz planes.
-        const int sq[3][4][3] = {{{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}},
-                                 {{0, 0, 0}, {1, 0, 0}, {1, 0, 1}, {0, 0, 1}},
-                                 {{0, 0, 0}, {0, 1, 0}, {0, 1, 1}, {0, 0, 1}}};
-        for (const auto& s : sq) {
-          bool a[4];
-          for (int c = 0; c < 4; ++c) a[c] = air(i + s[c][0], j + s[c][1], k + s[c][2]);
-          if (a[0] == a[2] && a[1] == a[3] && a[0] != a[1]) {
-            const int c = a[0] ? 0 : 1;
-            fill(i + s[c][0], j + s[c][1], k + s[c][2]);
-          }
-        }
-        // Opposite corners of the 2x2x2 block.
-        bool b[8];
-        int solids = 0;
-        for (int c = 0; c < 8; ++c) solids += !(b[c] = air(i + (c & 1), j + (c >> 1 & 1), k + (c >> 2)));
-        if (solids == 2 || solids == 6) {
-          for (int c = 0; c < 4; ++c) {
-            if (b[c] == b[7 - c] && b[c] == (solids == 6)) {
-              // Two lone corners of one kind: give the block a third cell of
-              // the solid kind, which removes the corner-only contact.
-              int f = solids == 6 ? c : (c ^ 1);
-              fill(i + (f & 1), j + (f >> 1 & 1), k + (f >> 2));
-              break;
-            }
-          }
+  const size_t sy = size_t(nx), sz = size_t(nx) * ny;
+  // The block with its low corner at cell (i, j, k).
+  const auto block = [&](int i, int j, int k) {
+    // A block all air or all solid, where neither test below can fire (one
+    // the bits called mixed may have been filled solid since), is skipped.
+    const size_t id = g.index(i, j, k);
+    const uint8_t* st = g.state.data();
+    const int air_cells = (st[id] == CellGrid::kAir) + (st[id + 1] == CellGrid::kAir) + (st[id + sy] == CellGrid::kAir) +
+                          (st[id + sy + 1] == CellGrid::kAir) + (st[id + sz] == CellGrid::kAir) +
+                          (st[id + sz + 1] == CellGrid::kAir) + (st[id + sz + sy] == CellGrid::kAir) +
+                          (st[id + sz + sy + 1] == CellGrid::kAir);
+    if (air_cells == 0 || air_cells == 8) return;
+    // The three 2x2 squares through cell (i,j,k) in the xy, xz and yz planes.
+    const int sq[3][4][3] = {{{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}},
+                             {{0, 0, 0}, {1, 0, 0}, {1, 0, 1}, {0, 0, 1}},
+                             {{0, 0, 0}, {0, 1, 0}, {0, 1, 1}, {0, 0, 1}}};
+    for (const auto& s : sq) {
+      bool a[4];
+      for (int c = 0; c < 4; ++c) a[c] = air(i + s[c][0], j + s[c][1], k + s[c][2]);
+      if (a[0] == a[2] && a[1] == a[3] && a[0] != a[1]) {
+        const int c = a[0] ? 0 : 1;
+        fill(i + s[c][0], j + s[c][1], k + s[c][2]);
+      }
+    }
+    // Opposite corners of the 2x2x2 block.
+    bool b[8];
+    int solids = 0;
+    for (int c = 0; c < 8; ++c) solids += !(b[c] = air(i + (c & 1), j + (c >> 1 & 1), k + (c >> 2)));
+    if (solids == 2 || solids == 6) {
+      for (int c = 0; c < 4; ++c) {
+        if (b[c] == b[7 - c] && b[c] == (solids == 6)) {
+          // Two lone corners of one kind: give the block a third cell of
+          // the solid kind, which removes the corner-only contact.
+          int f = solids == 6 ? c : (c ^ 1);
+          fill(i + (f & 1), j + (f >> 1 & 1), k + (f >> 2));
+          break;
         }
       }
+    }
+  };
+  // Bits of word w that are cells of a row (the last word's tail is not).
+  const auto cells_in = [&](size_t w) {
+    const int left = nx - int(64 * w);
+    return left >= 64 ? ~uint64_t{0} : left <= 0 ? 0 : (uint64_t{1} << left) - 1;
+  };
+  for (int k = 0; k + 1 < nz; ++k)
+    for (int j = 0; j + 1 < ny; ++j) {
+      const uint64_t* rows[4] = {&air_bits[(size_t(k) * ny + j) * words], &air_bits[(size_t(k) * ny + j + 1) * words],
+                                 &air_bits[(size_t(k + 1) * ny + j) * words], &air_bits[(size_t(k + 1) * ny + j + 1) * words]};
+      // Blocks from i on with air and solid cells both, as the cells are now.
+      const auto next_mixed = [&](int i) {
+        for (size_t w = size_t(i) >> 6; w < words; ++w) {
+          uint64_t any_air = 0, any_solid = 0;
+          for (const uint64_t* r : rows) {
+            const uint64_t here = r[w], next = w + 1 < words ? r[w + 1] : 0;
+            const uint64_t solid_here = ~here & cells_in(w), solid_next = ~next & cells_in(w + 1);
+            // Bit b: cell b or cell b + 1 of the row (the block's two columns).
+            any_air |= here | here >> 1 | next << 63;
+            any_solid |= solid_here | solid_here >> 1 | solid_next << 63;
+          }
+          uint64_t mixed = any_air & any_solid;
+          if (w == size_t(i) >> 6) mixed &= ~uint64_t{0} << (i & 63);
+          if (mixed) return int(64 * w) + std::countr_zero(mixed);
+        }
+        return nx;
+      };
+      // A fill changes the cells of its block only, so at most the next
+      // block of the row, which is then looked at whatever the bits said.
+      bool after_fill = false;
+      for (int i = 0; i + 1 < nx; ++i) {
+        if (!after_fill && (i = next_mixed(i)) + 1 >= nx) break;
+        const size_t before = filled;
+        block(i, j, k);
+        after_fill = filled != before;
+      }
+    }
   return filled;
 }
 

@@ -86,11 +86,19 @@ std::vector<uint32_t> foldover_vertices_mapped(const TriangleMesh& m, double lim
 }
 }  // namespace
 
-std::vector<uint32_t> foldover_vertices(const TriangleMesh& m, double max_angle_degrees) {
-  const double limit = std::cos(max_angle_degrees * std::numbers::pi / 180);
+namespace {
+// The mesh's edges as pairs of opposite half-edges (corners 3 * triangle +
+// k), in the order of the undirected edge; empty with `mapped` set when an
+// edge has more than two triangles or two of the same direction (see
+// foldover_vertices_mapped).  Depends on the triangles only, so rounds that
+// move vertices reuse it.
+struct EdgeSides {
+  bool mapped = false;
+  std::vector<std::pair<uint32_t, uint32_t>> pairs;  // (first, second) corner
+};
+EdgeSides edge_sides(const TriangleMesh& m) {
   // Half-edges sorted by their undirected edge: the two sides of an edge
-  // end up next to each other.  The pairs are reported in the order the
-  // map version met their second side (corner order), as it did.
+  // end up next to each other.
   struct Half {
     uint64_t edge;
     uint32_t corner;  // 3 * triangle + k
@@ -101,26 +109,47 @@ std::vector<uint32_t> foldover_vertices(const TriangleMesh& m, double max_angle_
     half[c] = {uint64_t{std::min(a, b)} << 32 | std::max(a, b), static_cast<uint32_t>(c)};
   }
   std::sort(half.begin(), half.end(), [](const Half& x, const Half& y) { return x.edge != y.edge ? x.edge < y.edge : x.corner < y.corner; });
-  std::vector<uint32_t> later;  // corners of the second sides of folded edges
+  EdgeSides out;
+  out.pairs.reserve(half.size() / 2);
   for (size_t i = 0; i < half.size();) {
     size_t j = i + 1;
     while (j < half.size() && half[j].edge == half[i].edge) ++j;
-    if (j - i > 2) return foldover_vertices_mapped(m, limit);
-    if (j - i == 2) {
-      const uint32_t c0 = half[i].corner, c1 = half[i + 1].corner;
-      // Opposite directions, as the map's lookup of the reverse edge needs.
-      if (m.triangles[c0] == m.triangles[c1]) return foldover_vertices_mapped(m, limit);
-      const V3 n1 = face_normal(m, c1 / 3), n2 = face_normal(m, c0 / 3);
-      const double l = std::sqrt(dot(n1, n1) * dot(n2, n2));
-      if (l > 0 && dot(n1, n2) / l < limit) later.push_back(c1);
+    // Opposite directions, as the map's lookup of the reverse edge needs.
+    if (j - i > 2 || (j - i == 2 && m.triangles[half[i].corner] == m.triangles[half[i + 1].corner])) {
+      out.mapped = true;
+      out.pairs.clear();
+      return out;
     }
+    if (j - i == 2) out.pairs.push_back({half[i].corner, half[i + 1].corner});
     i = j;
   }
-  std::sort(later.begin(), later.end());
-  std::vector<uint32_t> out;
-  out.reserve(2 * later.size());
-  for (uint32_t c : later) out.insert(out.end(), {m.triangles[c], m.triangles[c - c % 3 + (c + 1) % 3]});
   return out;
+}
+
+std::vector<uint32_t> foldover_vertices(const TriangleMesh& m, const EdgeSides& sides, double limit) {
+  if (sides.mapped) return foldover_vertices_mapped(m, limit);
+  // The pairs are reported in the order the map version met their second
+  // side (corner order), as it did.
+  std::vector<uint32_t> later;  // corners of the second sides of folded edges
+  for (const auto& [c0, c1] : sides.pairs) {
+    const V3 n1 = face_normal(m, c1 / 3), n2 = face_normal(m, c0 / 3);
+    const double l = std::sqrt(dot(n1, n1) * dot(n2, n2));
+    if (l > 0 && dot(n1, n2) / l < limit) later.push_back(c1);
+  }
+  std::sort(later.begin(), later.end());
+  std::vector<uint32_t> out(2 * later.size());
+  for (size_t i = 0; i < later.size(); ++i) {
+    const uint32_t c = later[i];
+    out[2 * i] = m.triangles[c], out[2 * i + 1] = m.triangles[c - c % 3 + (c + 1) % 3];
+  }
+  return out;
+}
+
+double fold_limit(double max_angle_degrees) { return std::cos(max_angle_degrees * std::numbers::pi / 180); }
+}  // namespace
+
+std::vector<uint32_t> foldover_vertices(const TriangleMesh& m, double max_angle_degrees) {
+  return foldover_vertices(m, edge_sides(m), fold_limit(max_angle_degrees));
 }
 
 size_t count_foldovers(const TriangleMesh& m, double max_angle_degrees) {
@@ -131,7 +160,10 @@ size_t untangle_folds(TriangleMesh& m, int rounds, bool coarse) {
   const Adjacency adj = vertex_adjacency(m);
   const Rim rim = rim_neighbours(m);
   size_t met = 0;
-  std::vector<uint32_t> folded = foldover_vertices(m);
+  // The rounds move vertices only: the edges' sides are found once.
+  const EdgeSides sides = edge_sides(m);
+  const double limit = fold_limit(150);
+  std::vector<uint32_t> folded = foldover_vertices(m, sides, limit);
   std::vector<uint32_t> ring;
   std::vector<float> was;
   for (int round = 0; round < rounds && !folded.empty(); ++round) {
@@ -153,7 +185,7 @@ size_t untangle_folds(TriangleMesh& m, int rounds, bool coarse) {
         for (int a = 0; a < 3; ++a) m.positions[3 * size_t{v} + a] = to[a];
     }
     if (!coarse && round + 1 == rounds) break;  // (the count after the last round is not needed)
-    std::vector<uint32_t> now = foldover_vertices(m);
+    std::vector<uint32_t> now = foldover_vertices(m, sides, limit);
     if (coarse && now.size() > folded.size()) {
       // Backwards: a vertex listed twice gets back where it was first.
       for (size_t i = ring.size(); i-- > 0;)

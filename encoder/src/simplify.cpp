@@ -68,25 +68,30 @@ struct Quadric {
   double error(const Vec3& p) const { return p.dot(A * p) + 2 * b.dot(p) + c; }
 };
 
+// One candidate per edge that may still collapse, kept up to date: a
+// collapse gives the candidates at both its ends to the merged vertex with
+// their new costs (see collapse()), so the heap never holds a stale entry.  (It used to: every
+// push stayed until popped, stale or not, and nine of ten pops on the
+// bunny's 73k-triangle shell were stale, each a sift through a heap of some
+// 300k entries and a read of a candidate far away in memory.)
+constexpr uint32_t kNone = 0xFFFFFFFFu;
 struct Candidate {
-  uint32_t u, v;
-  uint32_t stamp_u, stamp_v;
-  // Where the collapse puts the vertex: still right when the candidate
-  // comes off the heap with both stamps unchanged (nothing it depends on
-  // has moved), so it is not solved for twice.
-  Vec3 p;
+  uint32_t end[2];  // the edge's vertices, end[0] < end[1]
+  // The candidates at each end form a doubly linked list through these
+  // (next[k]/prev[k]: the list of end[k]), so a collapse finds and unlinks
+  // them without a search.
+  uint32_t next[2], prev[2];
+  // (Where the collapse puts the vertex is solved for again when the
+  // candidate comes off the heap, to the same bits since nothing it depends
+  // on has changed: one solve per collapse instead of a 24-byte store per
+  // push, ten pushes per collapse on the bunny 35k.)
 };
-// The heap holds only a cost and the candidate's slot (16 bytes, not the
-// candidate's 48): sifting through a heap of some 200k entries was a third
-// of the simplifier's time, most of it waiting on memory.  The heap
-// functions see the same comparisons as with whole candidates, so the
-// collapses come off in the same order and the output is unchanged.
+// The heap holds a cost, the push's sequence number and the candidate's
+// slot (16 bytes, not the candidate's 24): sifting moves less memory.
 struct HeapEntry {
   double cost;
+  uint32_t seq;
   uint32_t slot;
-};
-struct CostAbove {
-  bool operator()(const HeapEntry& a, const HeapEntry& b) const { return a.cost > b.cost; }
 };
 
 class Simplifier {
@@ -98,8 +103,8 @@ class Simplifier {
     faces_of_.resize(n);
     for (uint32_t f = 0; f < m.triangle_count(); ++f)
       for (int k = 0; k < 3; ++k) faces_of_[tris_[3 * f + k]].push_back(f);
-    stamp_.assign(n, 0);
-    removed_.assign(n, 0);
+    head_.assign(n, kNone);
+    slot_at_.assign(n, kNone);
     q_.resize(n);
     for (uint32_t f = 0; f < m.triangle_count(); ++f) {
       const Vec3 n3 = face_cross(f);
@@ -111,6 +116,10 @@ class Simplifier {
     }
     add_rim_planes();
     faces_ = m.triangle_count();
+    // A closed mesh has 1.5 edges per triangle; reserved so the pool and
+    // heap are not copied as they grow.
+    pool_.reserve(m.triangle_count() * 3 / 2 + 16);
+    heap_.reserve(m.triangle_count() * 3 / 2 + 16);
     for (uint32_t f = 0; f < m.triangle_count(); ++f)
       for (int k = 0; k < 3; ++k) {
         const uint32_t a = tris_[3 * f + k], b = tris_[3 * f + (k + 1) % 3];
@@ -120,15 +129,15 @@ class Simplifier {
 
   void run(uint32_t target) {
     while (faces_ > target && !heap_.empty()) {
-      std::pop_heap(heap_.begin(), heap_.end(), CostAbove{});
-      const uint32_t slot = heap_.back().slot;
-      heap_.pop_back();
-      const Candidate c = pool_[slot];
-      free_.push_back(slot);
-      if (removed_[c.u] || removed_[c.v] || stamp_[c.u] != c.stamp_u || stamp_[c.v] != c.stamp_v) continue;
-      const Vec3 p = c.p;
-      if (!collapse_ok(c.u, c.v, p)) continue;
-      collapse(c.u, c.v, p);
+      // Every candidate in the heap is current; a refused one leaves it
+      // until an edge at one of its ends collapses and pushes it again.
+      const uint32_t slot = heap_[0].slot;
+      const uint32_t u = pool_[slot].end[0], v = pool_[slot].end[1];
+      drop(slot);
+      Vec3 p;
+      optimal(u, v, p);
+      if (!collapse_ok(u, v, p)) continue;
+      collapse(u, v, p);
     }
   }
 
@@ -217,20 +226,104 @@ class Simplifier {
     return e;
   }
 
+  // u < v.
   void push(uint32_t u, uint32_t v) {
     Vec3 p;
     const double e = optimal(u, v, p);
     uint32_t slot;
     if (free_.empty()) {
       slot = static_cast<uint32_t>(pool_.size());
-      pool_.push_back({u, v, stamp_[u], stamp_[v], p});
+      pool_.emplace_back();
+      where_.push_back(0);
     } else {
       slot = free_.back();
       free_.pop_back();
-      pool_[slot] = {u, v, stamp_[u], stamp_[v], p};
     }
-    heap_.push_back({std::max(0.0, e), slot});
-    std::push_heap(heap_.begin(), heap_.end(), CostAbove{});
+    pool_[slot].end[0] = u, pool_[slot].end[1] = v;
+    link(slot, 0);
+    link(slot, 1);
+    where_[slot] = static_cast<uint32_t>(heap_.size());
+    heap_.push_back({std::max(0.0, e), seq_++, slot});
+    sift_up(heap_.size() - 1);
+  }
+
+  // Which end of candidate `slot` vertex x is.
+  int side(uint32_t slot, uint32_t x) const { return pool_[slot].end[0] == x ? 0 : 1; }
+
+  // Takes candidate `slot` out of the heap and its ends' lists, and frees it.
+  void drop(uint32_t slot) {
+    unlink(slot, 0);
+    unlink(slot, 1);
+    unheap(slot);
+  }
+  // Takes candidate `slot` out of the list of its end k.
+  void unlink(uint32_t slot, int k) {
+    const Candidate& c = pool_[slot];
+    const uint32_t x = c.end[k], n = c.next[k], pr = c.prev[k];
+    if (pr != kNone) pool_[pr].next[side(pr, x)] = n;
+    else head_[x] = n;
+    if (n != kNone) pool_[n].prev[side(n, x)] = pr;
+  }
+  // Puts candidate `slot` first in the list of its end k.
+  void link(uint32_t slot, int k) {
+    Candidate& c = pool_[slot];
+    const uint32_t x = c.end[k], h = head_[x];
+    c.next[k] = h, c.prev[k] = kNone;
+    if (h != kNone) pool_[h].prev[side(h, x)] = slot;
+    head_[x] = slot;
+  }
+  // Takes candidate `slot` out of the heap and frees it (its lists are the
+  // caller's business).
+  void unheap(uint32_t slot) {
+    const size_t i = where_[slot];
+    const HeapEntry last = heap_.back();
+    heap_.pop_back();
+    if (i < heap_.size()) {
+      heap_[i] = last;
+      where_[last.slot] = static_cast<uint32_t>(i);
+      sift_up(i);
+      sift_down(where_[last.slot]);
+    }
+    free_.push_back(slot);
+  }
+
+  // The heap's order: by cost, ties first pushed first, so which collapse
+  // comes first never depends on the heap's layout.  Ties are common: a
+  // flat region's collapses all cost 0.  Taking them by the edge's ends
+  // instead let the lowest-numbered vertex swallow a flat disc whole; in
+  // push order they spread over it as the old heap's arbitrary order did.
+  // (The sequence number wraps after 2^32 pushes, a mesh of some 500M
+  // triangles; the order stays a valid one.)
+  static bool before(const HeapEntry& a, const HeapEntry& b) {
+    if (a.cost != b.cost) return a.cost < b.cost;
+    return a.seq < b.seq;
+  }
+  void place(size_t i, const HeapEntry& e) {
+    heap_[i] = e;
+    where_[e.slot] = static_cast<uint32_t>(i);
+  }
+  void sift_up(size_t i) {
+    const HeapEntry e = heap_[i];
+    while (i > 0) {
+      const size_t parent = (i - 1) / 2;
+      if (!before(e, heap_[parent])) break;
+      place(i, heap_[parent]);
+      i = parent;
+    }
+    place(i, e);
+  }
+  void sift_down(size_t i) {
+    const HeapEntry e = heap_[i];
+    const size_t n = heap_.size();
+    for (;;) {
+      size_t child = 2 * i + 1;
+      if (child >= n) break;
+      if (child + 1 < n && before(heap_[child + 1], heap_[child])) ++child;
+      if (!before(heap_[child], e)) break;
+      place(i, heap_[child]);
+      i = child;
+    }
+    place(i, e);
   }
 
   // A fresh run of `span` mark values, every mark below the first of them.
@@ -320,6 +413,23 @@ class Simplifier {
   }
 
   void collapse(uint32_t u, uint32_t v, const Vec3& p) {
+    // Every candidate at u or v is out of date (their quadrics and places
+    // change, and v goes).  They are taken off u's and v's lists here and
+    // below become u's candidates again, updated in place: the same costs
+    // and push order as dropping them and pushing anew (so the same
+    // collapses), without freeing, relinking at their other end and
+    // re-inserting each one.
+    mine_.clear();
+    for (uint32_t x : {u, v}) {
+      for (uint32_t slot = head_[x]; slot != kNone;) {
+        const uint32_t next = pool_[slot].next[side(slot, x)];
+        // A second candidate for edge uv (triangles that disagree on its
+        // direction) is in both lists: taken once.
+        if (x == u || pool_[slot].end[0] != u) mine_.push_back(slot);
+        slot = next;
+      }
+      head_[x] = kNone;
+    }
     for (uint32_t f : faces_of_[v]) {
       bool has_u = false;
       for (int k = 0; k < 3; ++k) has_u |= tris_[3 * f + k] == u;
@@ -337,15 +447,58 @@ class Simplifier {
       }
     }
     faces_of_[v].clear();
-    removed_[v] = 1;
     rim_[u] |= rim_[v];
     pos_[u] = p;
     q_[u] += q_[v];
+    // One candidate per edge at u, each still linked at its other end w.
+    for (uint32_t slot : mine_) {
+      Candidate& c = pool_[slot];
+      int k = c.end[0] == u || c.end[0] == v ? 0 : 1;  // the end at u or v
+      const uint32_t w = c.end[1 - k];
+      if (w == u || w == v) {  // uv itself, a second time
+        unheap(slot);
+        continue;
+      }
+      if (slot_at_[w] != kNone) {  // u and v's common neighbour, a second time
+        unlink(slot, 1 - k);
+        unheap(slot);
+        continue;
+      }
+      slot_at_[w] = slot;
+      c.end[k] = u;
+      if (c.end[0] > c.end[1]) {  // ends in order again, links with them
+        std::swap(c.end[0], c.end[1]);
+        std::swap(c.next[0], c.next[1]);
+        std::swap(c.prev[0], c.prev[1]);
+        k = 1 - k;
+      }
+      link(slot, k);
+    }
     // Only edges at u change cost (their quadric and end moved); validity
-    // elsewhere is re-checked when an edge comes off the heap.
-    ++stamp_[u];
+    // elsewhere is checked when an edge comes off the heap.  In the order
+    // of w, each a fresh push: new cost, next sequence number.
     neighbours(u, nu_);
-    for (uint32_t w : nu_) push(std::min(u, w), std::max(u, w));
+    for (uint32_t w : nu_) {
+      const uint32_t slot = slot_at_[w];
+      if (slot == kNone) {  // refused before, or never pushed
+        push(std::min(u, w), std::max(u, w));
+        continue;
+      }
+      slot_at_[w] = kNone;
+      Vec3 p_unused;
+      const double e = optimal(pool_[slot].end[0], pool_[slot].end[1], p_unused);
+      const size_t i = where_[slot];
+      heap_[i] = {std::max(0.0, e), seq_++, slot};
+      sift_up(i);
+      sift_down(where_[slot]);
+    }
+    // (No edge at u leads elsewhere: its neighbours are u's and v's.)
+    for (uint32_t slot : mine_)
+      for (int k = 0; k < 2; ++k)
+        if (const uint32_t w = pool_[slot].end[k]; w != u && slot_at_[w] == slot) {
+          slot_at_[w] = kNone;
+          drop(slot);
+        }
   }
 
   std::vector<uint32_t> tris_;
@@ -353,14 +506,17 @@ class Simplifier {
   double needle_;  // SimplifyOptions::needle
   std::vector<Vec3> pos_;
   std::vector<std::vector<uint32_t>> faces_of_;
-  std::vector<uint32_t> stamp_;
-  std::vector<uint8_t> removed_;
   std::vector<uint8_t> rim_;  // on an edge with one triangle
   std::vector<Quadric> q_;
   uint32_t faces_ = 0;
-  std::vector<HeapEntry> heap_;  // a min-heap on cost (std::push_heap / pop_heap)
+  std::vector<HeapEntry> heap_;  // a binary min-heap in the order of before()
   std::vector<Candidate> pool_;  // the candidates, by HeapEntry::slot
-  std::vector<uint32_t> free_;   // slots of candidates already taken off the heap
+  std::vector<uint32_t> where_;  // per slot, its index in heap_
+  std::vector<uint32_t> free_;   // slots of candidates dropped
+  uint32_t seq_ = 0;             // pushes so far
+  std::vector<uint32_t> head_;   // per vertex, the first candidate at it (kNone: none)
+  std::vector<uint32_t> mine_;     // collapse(): the candidates at u and v
+  std::vector<uint32_t> slot_at_;  // collapse(): per neighbour of u, its candidate (kNone: none)
   std::vector<uint32_t> nu_, common_;
   std::vector<uint32_t> mark_;  // per vertex, see next_mark()
   uint32_t mark_top_ = 0;
