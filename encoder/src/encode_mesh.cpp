@@ -109,6 +109,13 @@ Result<MeshEncoding> encode_mesh(const TriangleMesh& mesh, const EncodeOptions& 
   sampler.sample = [&](uint32_t odd, const double p[3], const double n[3], double half_length) {
     return surface.sample(p, n, half_length, odd < rim.size() && rim[odd]);
   };
+  // Format 1.3: the boundary odd vertices onto the input's boundary curve,
+  // across the boundary as well as along the normal.  A closed input has
+  // no boundary edge, so its file is unchanged.
+  if (mo.boundary_values && surface.has_boundary())
+    sampler.boundary = [&](uint32_t, const double m[3], const double b[3], double half_length) {
+      return surface.boundary_offset(m, b, half_length);
+    };
   // With a level past the input's density, the levels up to it round
   // finer than the error target's step (mesh_level_step).
   const std::vector<uint64_t> vertices = level_vertex_counts(

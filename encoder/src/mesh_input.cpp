@@ -187,6 +187,14 @@ Sample MeshSurface::sample(const double p[3], const double n[3], double half_len
   return s;
 }
 
+double MeshSurface::boundary_offset(const double m[3], const double b[3], double half_length) const {
+  if (!has_boundary()) return 0;
+  double c[3];
+  rim_.closest_point(m, c);
+  const double off[3] = {c[0] - m[0], c[1] - m[1], c[2] - m[2]};
+  return std::clamp(dot3(off, b), -half_length, half_length);
+}
+
 std::vector<uint8_t> boundary_edges(uint32_t vertex_count, std::span<const uint32_t> triangles) {
   auto t = build_topology(vertex_count, triangles);
   if (!t.ok()) return {};

@@ -54,6 +54,10 @@ class MeshSurface {
   // when the input has no boundary); both return the distance.
   double closest_point(const double p[3], double out[3]) const { return surface_.closest_point(p, out); }
   double closest_boundary_point(const double p[3], double out[3]) const;
+  // Format 1.3: the offset along the unit in-surface direction b from m to
+  // the closest point of the input's boundary curve, clamped to
+  // half_length (0 when the input has no boundary).
+  double boundary_offset(const double m[3], const double b[3], double half_length) const;
   bool has_boundary() const noexcept { return rim_.triangle_count() > 0; }
 
  private:
