@@ -136,12 +136,12 @@ Result<EncodedLevels> encode_levels(const TriangleMesh& control, const LevelSamp
     // where the sampler's boundary curve is (rounded at the level's step).
     std::vector<int32_t> bq;
     size_t boundary_clamped = 0;
-    const BoundaryChooser bchoose = [&](uint32_t, uint32_t e, const float m[3], const double b[3], const double*,
+    const BoundaryChooser bchoose = [&](uint32_t, uint32_t e, const float m[3], const double b[3], const double n[3],
                                         const float* a, const float* c) {
       if (b[0] == 0 && b[1] == 0 && b[2] == 0) return int32_t{0};  // degenerate: the decoder will not move it
       const double len = std::sqrt(std::pow(a[0] - c[0], 2.0) + std::pow(a[1] - c[1], 2.0) + std::pow(a[2] - c[2], 2.0));
       const double at[3] = {m[0], m[1], m[2]};
-      const Quantized q = quantize(sampler.boundary(e, at, b, 0.5 * len), step, 0.5);
+      const Quantized q = quantize(sampler.boundary(e, at, b, n, 0.5 * len), step, 0.5);
       boundary_clamped += q.clamped;
       return q.q;
     };

@@ -86,7 +86,9 @@ struct LevelSampler {
   // boundary odd vertex `odd`, at `m` after its normal displacement, to the
   // surface's boundary, clamped to half_length.  Empty: no boundary values
   // (and no BDRY chunk).  Called from one thread, in boundary-edge order.
-  std::function<double(uint32_t odd, const double m[3], const double b[3], double half_length)> boundary;
+  // `n` is the vertex's unit normal.
+  std::function<double(uint32_t odd, const double m[3], const double b[3], const double n[3], double half_length)>
+      boundary;
 };
 
 // `control` must be the Draco-decoded control mesh.  Displacements from
