@@ -5,7 +5,7 @@
 // bounding-box diagonal (measure/mesh_distance).  Also: dbss's QEM against
 // meshoptimizer's simplifier for the control mesh.
 //
-//   lod_bench [--levels N] [--control-faces F] [--control-bits B] [--cut-holes H] [--errors E1,E2,..] [--samples N] [--detail] [--quick] [--no-search] [--dense-step-ratio R] [--skip-absent] MESH...
+//   lod_bench [--levels N] [--control-faces F] [--control-bits B] [--cut-holes H] [--errors E1,E2,..] [--samples N] [--detail] [--quick] [--no-search] [--dense-step-ratio R] [--no-boundary-values] [--skip-absent] MESH...
 //
 // With no MESH: the libcgal-demo meshes under test-data/ (closed, with
 // holes, several components); --cut-holes H adds each mesh again with H
@@ -55,6 +55,7 @@ struct Args {
   bool quick = false;   // --quick: no simplifier comparison, no decode timing (for sweeps)
   bool no_search = false;  // --no-search: the equal-error table on the targets' grid only
   double dense_step_ratio = kMeshDenseStepRatio;  // --dense-step-ratio R (1: one step for every level)
+  bool boundary_values = true;  // --no-boundary-values: normal displacements only (format 1.2, no BDRY)
   uint32_t cut_holes = 0;  // also run each closed mesh with this many holes cut in it
   std::vector<std::string> meshes;
 };
@@ -264,7 +265,7 @@ class TargetCurve {
     o.control_bits = args_.control_bits;
     o.error = target;
     o.threads = 2;
-    auto e = encode_mesh(input_, o, {args_.dense_step_ratio});
+    auto e = encode_mesh(input_, o, {args_.dense_step_ratio, args_.boundary_values});
     if (!e.ok()) return false;
     const Encoding& en = e.value().encoding;
     Point p;
@@ -360,7 +361,7 @@ int run_mesh(const std::string& path, const Args& args, uint32_t holes = 0) {
     o.error = err;
     o.threads = 2;
     auto t = Clock::now();
-    auto e = encode_mesh(input, o, {args.dense_step_ratio});
+    auto e = encode_mesh(input, o, {args.dense_step_ratio, args.boundary_values});
     const double enc_s = since(t);
     if (!e.ok()) {
       std::fprintf(stderr, "lod_bench: %s: %s\n", path.c_str(), e.status().to_string().c_str());
@@ -476,6 +477,7 @@ int main(int argc, char** argv) {
     else if (a == "--detail") args.detail = true;
     else if (a == "--quick") args.quick = true;
     else if (a == "--no-search") args.no_search = true;
+    else if (a == "--no-boundary-values") args.boundary_values = false;
     else if (a == "--dense-step-ratio" && i + 1 < argc) args.dense_step_ratio = std::atof(argv[++i]);
     else if (a == "--errors" && i + 1 < argc) {
       args.errors.clear();
@@ -487,7 +489,7 @@ int main(int argc, char** argv) {
       }
     } else if (a == "--skip-absent") args.skip_absent = true;
     else if (!a.empty() && a[0] == '-') {
-      std::fprintf(stderr, "usage: lod_bench [--levels N] [--control-faces F] [--control-bits B] [--cut-holes H] [--errors E1,E2] [--samples N] [--detail] [--quick] [--no-search] [--dense-step-ratio R] [--skip-absent] MESH...\n");
+      std::fprintf(stderr, "usage: lod_bench [--levels N] [--control-faces F] [--control-bits B] [--cut-holes H] [--errors E1,E2] [--samples N] [--detail] [--quick] [--no-search] [--dense-step-ratio R] [--no-boundary-values] [--skip-absent] MESH...\n");
       return 1;
     } else args.meshes.push_back(a);
   }

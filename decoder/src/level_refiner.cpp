@@ -39,6 +39,14 @@ void LevelRefiner::refine(const OddChooser& choose, float step, std::vector<int3
   s_->refiner.step_chosen(choose, q.data(), step, threads < 1 ? 1 : threads);
 }
 
+void LevelRefiner::refine(const OddChooser& choose, float step, std::vector<int32_t>& q,
+                          const BoundaryChooser& bchoose, float bstep, std::vector<int32_t>& bq, unsigned threads) {
+  const auto c = s_->refiner.counts();
+  q.resize(static_cast<size_t>(c.edges));
+  bq.resize(static_cast<size_t>(2 * c.edges - 3 * c.faces));
+  s_->refiner.step_chosen(choose, q.data(), step, threads < 1 ? 1 : threads, &bchoose, bq.data(), bstep);
+}
+
 uint32_t LevelRefiner::level() const noexcept { return s_->refiner.level(); }
 std::span<const float> LevelRefiner::positions() const noexcept { return s_->refiner.positions(); }
 std::span<const uint32_t> LevelRefiner::triangles() const noexcept { return s_->refiner.triangles(); }

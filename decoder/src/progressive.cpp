@@ -88,7 +88,12 @@ struct ProgressiveDecoder::State {
                                            std::to_string(c.edges) + " odd vertices");
     if (c.vertices + c.edges >= kNoHalfEdge || 12 * c.faces >= kNoHalfEdge)
       return fail(ErrorCode::limit_exceeded, "level " + std::to_string(current.level() + 1) + " is too large");
-    current.step(data.q, data.step, threads);
+    // Format 1.3: one boundary value per boundary edge (2E - 3F of this level).
+    if (!data.boundary.empty() && data.boundary.q.size() != 2 * c.edges - 3 * c.faces)
+      return fail(ErrorCode::bad_mesh, "level " + std::to_string(current.level() + 1) + " has " +
+                                           std::to_string(data.boundary.q.size()) + " boundary values for " +
+                                           std::to_string(2 * c.edges - 3 * c.faces) + " boundary edges");
+    current.step(data.q, data.step, threads, data.boundary.q, data.boundary.step);
     return {};
   }
 

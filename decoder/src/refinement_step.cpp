@@ -4,6 +4,7 @@
 #include <cstring>
 #include <utility>
 
+#include "boundary_shift.h"
 #include "odd_vertices.h"
 
 namespace dbss::detail {
@@ -112,15 +113,22 @@ TopologyRef Refiner::current_topology(unsigned threads) {
   return parent_.ref();
 }
 
-void Refiner::step(std::span<const int32_t> q, float step, unsigned threads) {
-  step_impl(q.empty() ? nullptr : q.data(), nullptr, nullptr, step, threads);
+void Refiner::step(std::span<const int32_t> q, float step, unsigned threads, std::span<const int32_t> bq,
+                   float bstep) {
+  BoundaryStep b;
+  if (!bq.empty() && !q.empty()) b.q = bq.data(), b.step = bstep;  // values only on a displaced level
+  step_impl(q.empty() ? nullptr : q.data(), nullptr, nullptr, step, threads, b);
 }
 
-void Refiner::step_chosen(const OddChooser& choose, int32_t* q, float step, unsigned threads) {
-  step_impl(nullptr, &choose, q, step, threads);
+void Refiner::step_chosen(const OddChooser& choose, int32_t* q, float step, unsigned threads,
+                          const BoundaryChooser* bchoose, int32_t* bq, float bstep) {
+  BoundaryStep b;
+  if (bchoose) b.choose = bchoose, b.chosen = bq, b.step = bstep;
+  step_impl(nullptr, &choose, q, step, threads, b);
 }
 
-void Refiner::step_impl(const int32_t* q, const OddChooser* choose, int32_t* chosen, float step, unsigned threads) {
+void Refiner::step_impl(const int32_t* q, const OddChooser* choose, int32_t* chosen, float step, unsigned threads,
+                        const BoundaryStep& boundary) {
   const TopologyRef t = current_topology(threads);
   const uint32_t evens = t.vertex_count, odds = t.edge_count;
   const size_t floats = 3 * (size_t{evens} + odds);
@@ -153,6 +161,11 @@ void Refiner::step_impl(const int32_t* q, const OddChooser* choose, int32_t* cho
       if (choose) kernels_.displaced_points_chosen(t, p, per_half, *choose, chosen, step, fb, fe, out_odd);
       else kernels_.displaced_points(t, p, per_half, q, step, fb, fe, out_odd);
     });
+  // Pass 2b (format 1.3, decoding.md section 7a): boundary odd vertices
+  // across the boundary, one thread (boundary edges are few, and the k-th
+  // value needs the count of boundary edges before it).
+  if (per_half && boundary.active())
+    shift_boundary(t, p, per_half, boundary.q, boundary.choose, boundary.chosen, boundary.step, out_odd);
   // Pass 3: the next level's triangles, over the stencil points.
   uint32_t* tri = triangles_.reuse_as<uint32_t>(12 * size_t{t.face_count});
   parallel(t.face_count, threads, [&](uint32_t fb, uint32_t fe) { refine_triangle_range(t, fb, fe, tri); });

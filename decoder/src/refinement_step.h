@@ -32,9 +32,16 @@ class Refiner {
   // Level L -> L+1 with the odd vertices' integers q (E_L of them, or none
   // for plain subdivision) and the level's step.  `threads` >= 1; the result
   // is the same for any value.
-  void step(std::span<const int32_t> q, float step, unsigned threads);
-  // The same step with each q chosen by `choose` and written to q[0..E_L).
-  void step_chosen(const OddChooser& choose, int32_t* q, float step, unsigned threads);
+  // `bq` (format 1.3): one value per boundary edge of level L, moved across
+  // the boundary by bq * bstep after the normal displacement; empty: none
+  // (ignored when q is empty: plain subdivision moves nothing).
+  void step(std::span<const int32_t> q, float step, unsigned threads, std::span<const int32_t> bq = {},
+            float bstep = 0);
+  // The same step with each q chosen by `choose` and written to q[0..E_L),
+  // and, with `bchoose`, each boundary value chosen by it and written to
+  // bq[0..B_L).
+  void step_chosen(const OddChooser& choose, int32_t* q, float step, unsigned threads,
+                   const BoundaryChooser* bchoose = nullptr, int32_t* bq = nullptr, float bstep = 0);
 
   uint32_t level() const noexcept { return level_; }
   // Counts of the current level (E is the number of odd vertices the next
@@ -58,7 +65,15 @@ class Refiner {
     void release(BlockPool* pool = nullptr);  // storage to `pool`, or freed
     void swap(Topology& o) noexcept;
   };
-  void step_impl(const int32_t* q, const OddChooser* choose, int32_t* chosen, float step, unsigned threads);
+  struct BoundaryStep {
+    const int32_t* q = nullptr;
+    const BoundaryChooser* choose = nullptr;
+    int32_t* chosen = nullptr;
+    float step = 0;
+    bool active() const noexcept { return q || choose; }
+  };
+  void step_impl(const int32_t* q, const OddChooser* choose, int32_t* chosen, float step, unsigned threads,
+                 const BoundaryStep& boundary);
   TopologyRef base_topology() const;
   // The connectivity of the current level (built from `parent_`), as a ref.
   TopologyRef current_topology(unsigned threads);

@@ -101,14 +101,45 @@ Result<MeshEncoding> encode_mesh(const TriangleMesh& mesh, const EncodeOptions& 
   // boundary edge of the level being refined follow the input's boundary.
   t = Clock::now();
   std::vector<uint8_t> rim;
+  std::vector<double> rim_tangent;  // per edge, 3 each: the unit direction of a boundary edge
   LevelSampler sampler;
   sampler.begin_level = [&](uint32_t, std::span<const float> positions, std::span<const uint32_t> triangles) {
-    rim = surface.has_boundary() ? boundary_edges(static_cast<uint32_t>(positions.size() / 3), triangles)
-                                 : std::vector<uint8_t>{};
+    rim.clear();
+    rim_tangent.clear();
+    if (!surface.has_boundary()) return;
+    auto topo = build_topology(static_cast<uint32_t>(positions.size() / 3), triangles);
+    if (!topo.ok()) return;
+    const LevelTopology& t = topo.value();
+    rim.assign(t.edge_count(), 0);
+    rim_tangent.assign(3 * size_t{t.edge_count()}, 0.0);
+    for (uint32_t edge = 0; edge < t.edge_count(); ++edge) {
+      const uint32_t h = t.edge_half[edge];
+      if (t.twin[h] != kNoHalfEdge) continue;
+      rim[edge] = 1;
+      const float* u = &positions[3 * size_t{t.triangles[h]}];
+      const float* w = &positions[3 * size_t{t.triangles[next_half(h)]}];
+      const double d[3] = {double{w[0]} - u[0], double{w[1]} - u[1], double{w[2]} - u[2]};
+      const double len = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+      if (len > 0)
+        for (int k = 0; k < 3; ++k) rim_tangent[3 * size_t{edge} + k] = d[k] / len;
+    }
   };
+  // A boundary odd vertex aims at the input's boundary curve where it
+  // crosses the plane across its edge: with BDRY values it can reach that
+  // point (along its normal and across the boundary); without, its normal
+  // offset is still the one to that point.  (Closed input: unchanged.)
   sampler.sample = [&](uint32_t odd, const double p[3], const double n[3], double half_length) {
-    return surface.sample(p, n, half_length, odd < rim.size() && rim[odd]);
+    const bool on_rim = odd < rim.size() && rim[odd];
+    const double* tangent = on_rim && mo.boundary_values ? &rim_tangent[3 * size_t{odd}] : nullptr;
+    return surface.sample(p, n, half_length, on_rim, tangent);
   };
+  // Format 1.3: the boundary odd vertices onto the input's boundary curve,
+  // across the boundary as well as along the normal.  A closed input has
+  // no boundary edge, so its file is unchanged.
+  if (mo.boundary_values && surface.has_boundary())
+    sampler.boundary = [&](uint32_t, const double m[3], const double b[3], const double n[3], double half_length) {
+      return surface.boundary_offset(m, b, n, half_length);
+    };
   // With a level past the input's density, the levels up to it round
   // finer than the error target's step (mesh_level_step).
   const std::vector<uint64_t> vertices = level_vertex_counts(

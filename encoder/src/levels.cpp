@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <memory>
 #include <mutex>
 
@@ -131,7 +132,23 @@ Result<EncodedLevels> encode_levels(const TriangleMesh& control, const LevelSamp
     format::Level level;
     level.index = static_cast<uint8_t>(l);
     level.step = step;
-    r.refine(choose, step, level.q, std::max(1u, o.threads));
+    // Format 1.3: boundary odd vertices also move across the boundary, to
+    // where the sampler's boundary curve is (rounded at the level's step).
+    std::vector<int32_t> bq;
+    size_t boundary_clamped = 0;
+    const BoundaryChooser bchoose = [&](uint32_t, uint32_t e, const float m[3], const double b[3], const double n[3],
+                                        const float* a, const float* c) {
+      if (b[0] == 0 && b[1] == 0 && b[2] == 0) return int32_t{0};  // degenerate: the decoder will not move it
+      const double len = std::sqrt(std::pow(a[0] - c[0], 2.0) + std::pow(a[1] - c[1], 2.0) + std::pow(a[2] - c[2], 2.0));
+      const double at[3] = {m[0], m[1], m[2]};
+      const Quantized q = quantize(sampler.boundary(e, at, b, n, 0.5 * len), step, 0.5);
+      boundary_clamped += q.clamped;
+      return q.q;
+    };
+    if (sampler.boundary)
+      r.refine(choose, step, level.q, bchoose, step, bq, std::max(1u, o.threads));
+    else
+      r.refine(choose, step, level.q, std::max(1u, o.threads));
 
     LevelStats st;
     st.level = l;
@@ -147,6 +164,26 @@ Result<EncodedLevels> encode_levels(const TriangleMesh& control, const LevelSamp
       sum_abs += magnitude[e];
     }
     st.mean_abs_displacement = odd ? sum_abs / odd : 0;
+
+    st.boundary_odd = bq.size();
+    for (int32_t v : bq) st.boundary_moved += v != 0;
+    st.clamped += boundary_clamped;
+    if (st.boundary_moved) {
+      // The smallest coding, the older ones on a tie (as choose_coding).
+      level.boundary.step = step;
+      level.boundary.q = std::move(bq);
+      size_t best = SIZE_MAX;
+      format::DisplacementCoding best_coding = format::DisplacementCoding::varint;
+      for (auto coding : {format::DisplacementCoding::byte_planes, format::DisplacementCoding::varint,
+                          format::DisplacementCoding::context}) {
+        level.boundary.coding = coding;
+        auto data = format::encode_boundary(level, o.zstd_level);
+        if (!data.ok()) return data.status();
+        if (data.value().size() < best) best = data.value().size(), best_coding = coding;
+      }
+      level.boundary.coding = best_coding;
+      st.boundary_bytes = best;
+    }
 
     auto chunk = choose_coding(level, o.zstd_level);
     if (!chunk.ok()) return chunk.status();

@@ -163,12 +163,26 @@ double MeshSurface::closest_boundary_point(const double p[3], double out[3]) con
   return rim_.closest_point(p, out);
 }
 
-Sample MeshSurface::sample(const double p[3], const double n[3], double half_length, bool boundary) const {
+void MeshSurface::boundary_target(const double p[3], const double t[3], double out[3]) const {
+  double x[3] = {p[0], p[1], p[2]};
+  for (int i = 0; i < 6; ++i) {
+    rim_.closest_point(x, out);
+    const double off[3] = {out[0] - p[0], out[1] - p[1], out[2] - p[2]};
+    const double along = dot3(off, t);
+    // Converged when the curve point is (nearly) in the plane.
+    if (std::abs(along) <= 1e-9 * (1 + std::sqrt(dot3(off, off)))) return;
+    for (int k = 0; k < 3; ++k) x[k] = out[k] - along * t[k];
+  }
+}
+
+Sample MeshSurface::sample(const double p[3], const double n[3], double half_length, bool boundary,
+                           const double* tangent) const {
   Sample s;
   double d = 0;
   if (boundary && has_boundary()) {
     double c[3];
-    rim_.closest_point(p, c);
+    if (tangent) boundary_target(p, tangent, c);
+    else rim_.closest_point(p, c);
     const double off[3] = {c[0] - p[0], c[1] - p[1], c[2] - p[2]};
     d = dot3(off, n);
     s.source = SampleSource::nearest;
@@ -185,6 +199,15 @@ Sample MeshSurface::sample(const double p[3], const double n[3], double half_len
   s.clamped = std::abs(d) > half_length;
   s.distance = std::clamp(d, -half_length, half_length);
   return s;
+}
+
+double MeshSurface::boundary_offset(const double m[3], const double b[3], const double n[3], double half_length) const {
+  if (!has_boundary()) return 0;
+  const double t[3] = {n[1] * b[2] - n[2] * b[1], n[2] * b[0] - n[0] * b[2], n[0] * b[1] - n[1] * b[0]};
+  double c[3];
+  boundary_target(m, t, c);
+  const double off[3] = {c[0] - m[0], c[1] - m[1], c[2] - m[2]};
+  return std::clamp(dot3(off, b), -half_length, half_length);
 }
 
 std::vector<uint8_t> boundary_edges(uint32_t vertex_count, std::span<const uint32_t> triangles) {

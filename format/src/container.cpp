@@ -28,4 +28,10 @@ std::optional<uint64_t> odd_vertex_count(const MeshCounts& control, uint32_t lev
   return prev->edges;
 }
 
+std::optional<uint64_t> boundary_edge_count(const MeshCounts& control, uint32_t level) {
+  auto c = counts_at_level(control, level);
+  if (!c || 2 * c->edges < 3 * c->triangles) return std::nullopt;  // no overflow: both are below 2^62
+  return 2 * c->edges - 3 * c->triangles;
+}
+
 }  // namespace dbss::format

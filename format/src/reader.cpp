@@ -196,6 +196,8 @@ Status Reader::end_chunk() {
     s = on_meta();
   } else if (chunk_type_ == kCrea) {
     s = on_creases();
+  } else if (chunk_type_ == kBdry) {
+    s = on_boundary();
   } else {
     ++ancillary_skipped_;  // unknown critical types were refused with the table of contents
   }
@@ -276,6 +278,7 @@ Status Reader::on_toc() {
   toc.reserve(count);  // count <= max_chunks, checked in begin_chunk
   uint64_t expect = offset_;
   uint32_t controls = 0, levels = 0, creases = 0;
+  bool boundary_seen = false, boundary_pending = false;  // rule 9: a BDRY waits for its LEVL
   for (uint32_t i = 0; i < count; ++i) {
     const uint8_t* p = d + 16 + 16 * size_t{i};
     const uint64_t eat = at + 16 + 16 * uint64_t{i};
@@ -298,10 +301,17 @@ Status Reader::on_toc() {
     } else if (e.type == kLevl) {
       if (controls == 0) return fail(ErrorCode::bad_structure, name + ": LEVL before CTRL", eat);
       ++levels;
+      boundary_pending = false;
+    } else if (e.type == kBdry && header_.version_minor >= kBoundaryVersionMinor) {
+      // Version 1.3: after CTRL, at most one per level, before its LEVL.
+      if (controls == 0) return fail(ErrorCode::bad_structure, name + ": BDRY before CTRL", eat);
+      if (boundary_pending) return fail(ErrorCode::bad_structure, name + ": a second BDRY for one level", eat);
+      boundary_pending = boundary_seen = true;
     } else if (e.type == kCrea && header_.version_minor >= kCreaseVersionMinor) {
       // Version 1.1: at most one, after CTRL, before every LEVL (level 1 needs it).
       if (++creases > 1) return fail(ErrorCode::bad_structure, name + ": a second CREA chunk", eat);
-      if (controls == 0 || levels > 0) return fail(ErrorCode::bad_structure, name + ": CREA must come after CTRL and before every LEVL", eat);
+      if (controls == 0 || levels > 0 || boundary_seen)
+        return fail(ErrorCode::bad_structure, name + ": CREA must come after CTRL and before every LEVL and BDRY", eat);
     } else if (e.type.critical()) {
       // CREA in a file that says 1.0 is as unknown as to a 1.0 reader.
       return fail(ErrorCode::unknown_critical_chunk,
@@ -317,6 +327,7 @@ Status Reader::on_toc() {
                 "INDX lists " + std::to_string(levels) + " LEVL chunks but HEAD declares " +
                     std::to_string(header_.level_count),
                 at);
+  if (boundary_pending) return fail(ErrorCode::bad_structure, "INDX: a BDRY chunk after the last LEVL", at);
   if (expect != file_size)
     return fail(ErrorCode::bad_structure,
                 "INDX: file_size " + std::to_string(file_size) + " but the chunks end at " + std::to_string(expect), at);
@@ -355,57 +366,84 @@ Status Reader::on_control() {
 }
 
 Status Reader::on_level() {
+  Level level;
+  const uint32_t index = levels_ready() + 1;
+  // Coding 2 is new in 1.2: in an older file it is unknown, as a 1.1 reader finds it.
+  const uint8_t codings = header_.version_minor >= kContextCodingVersionMinor ? 3 : 2;
+  const MeshCounts control{header_.control_vertex_count, header_.control_edge_count, header_.control_triangle_count};
+  const auto expect = odd_vertex_count(control, index);  // cannot overflow: HEAD was checked
+  if (Status s = parse_values("LEVL", expect.value_or(0), "odd_count", "the control mesh implies", codings,
+                              level.coding, level.step, level.q);
+      !s.ok())
+    return s;
+  level.index = static_cast<uint8_t>(index);
+  if (pending_boundary_) {
+    level.boundary = std::move(*pending_boundary_);
+    pending_boundary_.reset();
+  }
+  levels_.push_back(std::move(level));
+  return {};
+}
+
+Status Reader::on_boundary() {
+  // Section 9c: laid out and checked as a LEVL, one value per boundary edge
+  // of the level before the LEVL that follows.
+  BoundaryValues b;
+  const MeshCounts control{header_.control_vertex_count, header_.control_edge_count, header_.control_triangle_count};
+  const auto expect = boundary_edge_count(control, levels_ready());
+  if (Status s = parse_values("BDRY", expect.value_or(0), "boundary_count", "the boundary edges are", 3, b.coding,
+                              b.step, b.q);
+      !s.ok())
+    return s;
+  pending_boundary_ = std::move(b);
+  return {};
+}
+
+Status Reader::parse_values(const char* kind, uint64_t expect, const char* count_name, const char* expect_says,
+                            uint8_t codings, DisplacementCoding& coding_out, float& step, std::vector<int32_t>& q) {
   const uint8_t* d = chunk_data_.data();
   const uint64_t at = chunk_offset_ + 8;
   const uint32_t expected_index = levels_ready() + 1;
+  const std::string name = std::string(kind) + " " + std::to_string(expected_index);
   // Spec section 9 lists these checks in this order with one code each.  A
-  // 16-byte LEVL has all its fields and an empty frame: a zstd error below.
+  // 16-byte chunk has all its fields and an empty frame: a zstd error below.
   if (chunk_length_ < kLevelFixed)
     return fail(ErrorCode::bad_field,
-                "LEVL " + std::to_string(expected_index) + ": " + std::to_string(chunk_length_) +
-                    " bytes, too short for its 16 bytes of fields",
-                at);
-  Level level;
-  level.index = d[0];
+                name + ": " + std::to_string(chunk_length_) + " bytes, too short for its 16 bytes of fields", at);
+  const uint8_t index = d[0];
   const uint8_t coding = d[1];
   const uint32_t count = load_u32(d + 4);
-  level.step = load_f32(d + 8);
+  step = load_f32(d + 8);
   const uint32_t raw_size = load_u32(d + 12);
-  const std::string name = "LEVL " + std::to_string(expected_index);
-  if (level.index != expected_index)
-    return fail(ErrorCode::bad_structure, name + ": level index field is " + std::to_string(level.index), at);
-  // Coding 2 is new in 1.2: in an older file it is unknown, as a 1.1 reader finds it.
-  const uint8_t codings = header_.version_minor >= kContextCodingVersionMinor ? 3 : 2;
+  if (index != expected_index)
+    return fail(ErrorCode::bad_structure, name + ": level index field is " + std::to_string(index), at);
   if (coding >= codings)
     return fail(ErrorCode::bad_field, name + ": unknown coding " + std::to_string(coding), at + 1);
-  level.coding = static_cast<DisplacementCoding>(coding);
+  coding_out = static_cast<DisplacementCoding>(coding);
   if (load_u16(d + 2) != 0) return fail(ErrorCode::bad_field, name + ": reserved field is not zero", at + 2);
-
-  const MeshCounts control{header_.control_vertex_count, header_.control_edge_count, header_.control_triangle_count};
-  const auto expect = odd_vertex_count(control, expected_index);  // cannot overflow: HEAD was checked
-  if (!expect || count != *expect)
+  // A BDRY of a level without boundary edges is invalid whatever it says.
+  if (count != expect || expect == 0)
     return fail(ErrorCode::bad_field,
-                name + ": odd_count " + std::to_string(count) + ", but the control mesh implies " +
-                    std::to_string(expect.value_or(0)),
+                name + ": " + count_name + " " + std::to_string(count) + ", but " + expect_says + " " +
+                    std::to_string(expect),
                 at + 4);
-  if (!std::isfinite(level.step) || !(level.step > 0))
+  if (!std::isfinite(step) || !(step > 0))
     return fail(ErrorCode::bad_field, name + ": step is not a finite positive number", at + 8);
-  if (!raw_size_valid(raw_size, level.coding, count))
+  if (!raw_size_valid(raw_size, coding_out, count))
     return fail(ErrorCode::bad_field, name + ": raw_size " + std::to_string(raw_size) + " does not fit " +
                                           std::to_string(count) + " values",
                 at + 12);
 
   const uint8_t* src = d + kLevelFixed;
   const size_t src_size = chunk_length_ - kLevelFixed;
-  if (level.coding == DisplacementCoding::context) {
+  if (coding_out == DisplacementCoding::context) {
     if (raw_size != src_size)
       return fail(ErrorCode::bad_field,
                   name + ": raw_size " + std::to_string(raw_size) + " is not the coded stream's " +
                       std::to_string(src_size) + " bytes",
                   at + 12);
-    if (Status s = context_decode({src, src_size}, count, at + kLevelFixed, level.q); !s.ok())
+    if (Status s = context_decode({src, src_size}, count, at + kLevelFixed, q); !s.ok())
       return fail(s.code(), name + ": " + s.message(), s.offset());
-    levels_.push_back(std::move(level));
     return {};
   }
   const size_t frame = ZSTD_findFrameCompressedSize(src, src_size);
@@ -427,9 +465,8 @@ Status Reader::on_level() {
     return fail(ErrorCode::compression, name + ": zstd frame decompressed to " + std::to_string(got) + " bytes, not " +
                                             std::to_string(raw_size),
                 at + kLevelFixed);
-  if (Status s = unpack_displacements(raw, level.coding, count, at + kLevelFixed, level.q); !s.ok())
+  if (Status s = unpack_displacements(raw, coding_out, count, at + kLevelFixed, q); !s.ok())
     return fail(s.code(), name + ": " + s.message(), s.offset());
-  levels_.push_back(std::move(level));
   return {};
 }
 

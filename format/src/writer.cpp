@@ -81,6 +81,19 @@ Result<std::vector<uint8_t>> encode_level(const Level& level, int zstd_level) {
   return d;
 }
 
+Result<std::vector<uint8_t>> encode_boundary(const Level& level, int zstd_level) {
+  // Section 9c: the same fields and payload as a LEVL, with the boundary
+  // values for the displacements.
+  Level as_level;
+  as_level.index = level.index;
+  as_level.coding = level.boundary.coding;
+  as_level.step = level.boundary.step;
+  as_level.q = level.boundary.q;
+  auto d = encode_level(as_level, zstd_level);
+  if (!d.ok()) return Status(ErrorCode::invalid_argument, "boundary values of " + d.status().message());
+  return d;
+}
+
 std::vector<uint8_t> encode_control(ControlCodec codec, std::span<const uint8_t> payload) {
   std::vector<uint8_t> d;
   d.reserve(4 + payload.size());
@@ -159,6 +172,8 @@ std::vector<uint8_t> assemble(std::span<const uint8_t> head_data, std::span<cons
 
 uint16_t minimum_version_minor(const FileContents& c) {
   for (const Level& level : c.levels)
+    if (!level.boundary.empty()) return kBoundaryVersionMinor;
+  for (const Level& level : c.levels)
     if (level.coding == DisplacementCoding::context) return kContextCodingVersionMinor;
   return c.creases.empty() ? 0 : kCreaseVersionMinor;
 }
@@ -208,6 +223,23 @@ Result<SerializedFile> serialize_with_toc(const FileContents& c, const WriteOpti
     if (level.q.size() != odd[i])
       return bad("level " + std::to_string(i + 1) + " has " + std::to_string(level.q.size()) +
                  " displacements; its odd-vertex count is " + std::to_string(odd[i]));
+    if (!level.boundary.empty()) {
+      // Section 9c: right before its LEVL, one value per boundary edge.
+      if (c.header.version_minor < kBoundaryVersionMinor)
+        return bad("level " + std::to_string(i + 1) + "'s boundary values need version 1." +
+                   std::to_string(kBoundaryVersionMinor) + ", the header says 1." +
+                   std::to_string(c.header.version_minor));
+      const MeshCounts control{c.header.control_vertex_count, c.header.control_edge_count,
+                               c.header.control_triangle_count};
+      const auto boundary = boundary_edge_count(control, static_cast<uint32_t>(i));
+      if (!boundary || level.boundary.q.size() != *boundary)
+        return bad("level " + std::to_string(i + 1) + " has " + std::to_string(level.boundary.q.size()) +
+                   " boundary values; the level before has " + std::to_string(boundary.value_or(0)) +
+                   " boundary edges");
+      auto data = encode_boundary(level, options.zstd_level);
+      if (!data.ok()) return data.status();
+      body.push_back({kBdry, std::move(data).value()});
+    }
     if (!c.level_data.empty()) {
       // Made by encode_level, which checked the level: only that the data
       // is this level's is checked here.

@@ -50,6 +50,7 @@ struct Head {
   uint8_t level_count;
   uint32_t V0, E0, F0;
   std::vector<uint64_t> edges;  // derived E_l, l = 0..L
+  std::vector<uint64_t> faces;  // derived F_l, l = 0..L
 };
 
 // Section 7: one table of contents entry.
@@ -131,11 +132,13 @@ Head parse_head(std::span<const uint8_t> d) {
   const u128 cap = u128{1} << 62;
   u128 V = V0, E = E0, F = F0;
   h.edges.push_back(E0);
+  h.faces.push_back(F0);
   for (uint32_t l = 0; l < h.level_count; ++l) {
     const u128 V1 = V + E, E1 = 2 * E + 3 * F, F1 = 4 * F;
     V = V1, E = E1, F = F1;
     if (V > cap || E > cap || F > cap) fail("bad_field");
     h.edges.push_back(static_cast<uint64_t>(E));
+    h.faces.push_back(static_cast<uint64_t>(F));
   }
   // Section 12's limits apply here, before anything else is read.
   if (h.level_count > kMaxLevels) fail("limit_exceeded");
@@ -153,6 +156,7 @@ std::vector<Entry> parse_index(std::span<const uint8_t> d, uint64_t body_start, 
   std::vector<Entry> entries(n);
   uint64_t expected = body_start;
   uint32_t ctrl = 0, levl = 0, crea = 0;
+  bool bdry_seen = false, bdry_pending = false;
   for (uint32_t i = 0; i < n; ++i) {
     const uint8_t* e = p + 16 + 16 * size_t{i};
     Entry& entry = entries[i];
@@ -168,8 +172,12 @@ std::vector<Entry> parse_index(std::span<const uint8_t> d, uint64_t body_start, 
       if (++ctrl > 1 || levl > 0) fail("bad_structure");  // rule 4
     } else if (type_is(e, "LEVL")) {
       ++levl;
+      bdry_pending = false;
     } else if (type_is(e, "CREA") && head.minor >= 1) {
-      if (++crea > 1 || ctrl == 0 || levl > 0) fail("bad_structure");  // rule 8
+      if (++crea > 1 || ctrl == 0 || levl > 0 || bdry_seen) fail("bad_structure");  // rule 8
+    } else if (type_is(e, "BDRY") && head.minor >= 3) {
+      if (ctrl == 0 || bdry_pending) fail("bad_structure");  // rule 9
+      bdry_seen = bdry_pending = true;
     } else if (e[0] >= 'A' && e[0] <= 'Z') {
       fail("unknown_critical_chunk");  // rule 6
     }
@@ -177,6 +185,7 @@ std::vector<Entry> parse_index(std::span<const uint8_t> d, uint64_t body_start, 
   if (file_size != expected) fail("bad_structure");    // rule 2
   if (ctrl != 1) fail("bad_structure");                // rule 4
   if (levl != head.level_count) fail("bad_structure");  // rule 5
+  if (bdry_pending) fail("bad_structure");              // rule 9: a LEVL after the last BDRY
   if (file_size > kMaxFileSize) fail("limit_exceeded");
   for (const Entry& entry : entries)
     if (entry.type[0] >= 'a' && entry.length > kMaxAncillary) fail("limit_exceeded");
@@ -203,9 +212,11 @@ Mesh read_ctrl(std::span<const uint8_t> d, const Head& head) {
 // mesh of `edges` edges.
 struct Levl {
   std::vector<int32_t> q;
-  float step;
+  float step = 0;
 };
 
+// Section 9c: a BDRY chunk has the same fields, with boundary_count =
+// B_{level-1} (which must be at least 1) for odd_count.
 Levl read_levl(std::span<const uint8_t> d, uint32_t level, uint64_t edges, uint16_t minor) {
   if (d.size() < 16) fail("bad_field");  // too short for its fields (section 9, check 1)
   const uint8_t* p = d.data();
@@ -214,7 +225,7 @@ Levl read_levl(std::span<const uint8_t> d, uint32_t level, uint64_t edges, uint1
   if (coding > (minor >= 2 ? 2 : 1)) fail("bad_field");  // coding 2: version 1.2
   if (u16(p + 2) != 0) fail("bad_field");
   const uint32_t odd_count = u32(p + 4);
-  if (odd_count != edges) fail("bad_field");
+  if (odd_count != edges || edges == 0) fail("bad_field");
   Levl out;
   out.step = f32(p + 8);
   if (!std::isfinite(out.step) || !(out.step > 0)) fail("bad_field");
@@ -350,6 +361,8 @@ Decoded decode(std::span<const uint8_t> file) {
 
     // Body chunks in file order.
     uint32_t level = 0;
+    Levl bdry;  // section 9c: the BDRY chunk of the next LEVL, if any
+    bool have_bdry = false;
     for (const Entry& entry : entries) {
       const auto data = reader.chunk(entry.offset, [&](uint32_t length, const uint8_t* type) {
         if (std::memcmp(type, entry.type.data(), 4) != 0 || length != entry.length)
@@ -365,8 +378,16 @@ Decoded decode(std::span<const uint8_t> file) {
         if (level == 1 && !detail::creases_fit(out.levels.back())) fail("bad_mesh");
         // odd_count = E_{level-1}, from the derived counts.
         const Levl levl = read_levl(data, level, head.edges[level - 1], head.minor);
-        // Level l+1 from the displaced level l (decoding.md section 7).
-        out.levels.push_back(subdivide(out.levels.back(), levl.q, levl.step));
+        // Level l+1 from the displaced level l (decoding.md sections 7 and 7a).
+        out.levels.push_back(subdivide(out.levels.back(), levl.q, levl.step, nullptr,
+                                       have_bdry ? std::span<const int32_t>(bdry.q) : std::span<const int32_t>(),
+                                       bdry.step));
+        have_bdry = false;
+      } else if (type_is(entry.type.data(), "BDRY")) {
+        // Section 9c: B_{l} = 2 E_l - 3 F_l for the level l it refines.
+        const uint64_t boundary = 2 * head.edges[level] - 3 * head.faces[level];
+        bdry = read_levl(data, level + 1, boundary, 2);  // codings 0..2 in any 1.3 file
+        have_bdry = true;
       } else if (type_is(entry.type.data(), "meta")) {
         check_meta(data);
       }

@@ -46,8 +46,14 @@ Decoded decode(std::span<const uint8_t> file);
 // refinement for. With `normals`, also returns every odd vertex's binary64
 // unit normal of section 6 (3 per odd vertex, in edge order), with or
 // without displacement.
+//
+// Version 1.3 (decoding.md section 7a): `boundary` holds one integer per
+// boundary edge of `level` in canonical edge order (empty: none), moved by
+// boundary * boundary_step across the boundary after the normal
+// displacement; only with a non-empty `q`.
 Mesh subdivide(const Mesh& level, std::span<const int32_t> q, float step,
-               std::vector<double>* normals = nullptr);
+               std::vector<double>* normals = nullptr, std::span<const int32_t> boundary = {},
+               float boundary_step = 0);
 
 namespace detail {
 // decoding.md section 2 step 6: no crease edge on the boundary (true

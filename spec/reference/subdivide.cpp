@@ -209,7 +209,8 @@ void ring_normal(const std::vector<float>& P, uint32_t m, const uint32_t* ring, 
 
 }  // namespace
 
-Mesh subdivide(const Mesh& level, std::span<const int32_t> q, float step, std::vector<double>* normals) {
+Mesh subdivide(const Mesh& level, std::span<const int32_t> q, float step, std::vector<double>* normals,
+               std::span<const int32_t> boundary, float boundary_step) {
   if (level.positions.size() % 3 != 0 || level.positions.size() / 3 >= kNone)
     throw std::invalid_argument("positions are not x y z triples");
   const uint32_t V = static_cast<uint32_t>(level.positions.size() / 3);
@@ -219,6 +220,10 @@ Mesh subdivide(const Mesh& level, std::span<const int32_t> q, float step, std::v
   const uint32_t E = t.edge_count();
   const uint32_t F = static_cast<uint32_t>(level.triangles.size() / 3);
   if (!q.empty() && q.size() != E) throw std::invalid_argument("need one q per edge");
+  uint32_t B = 0;  // boundary edges (section 3: no twin)
+  for (uint32_t e = 0; e < E; ++e) B += t.twin[t.edge_half[e]] == kNone;
+  if (!boundary.empty() && (q.empty() || boundary.size() != B))
+    throw std::invalid_argument("need one boundary value per boundary edge, and q");
 
   const Creases creases = crease_kinds(t, level);
 
@@ -234,6 +239,7 @@ Mesh subdivide(const Mesh& level, std::span<const int32_t> q, float step, std::v
   // Sections 6 and 7: normals from the undisplaced level l+1 positions, so
   // displaced positions go to a copy until all normals are taken.
   if (normals) normals->assign(3 * size_t{E}, 0.0);
+  std::vector<double> boundary_normals;  // section 7a needs section 6's n of the boundary odd vertices
   if (!q.empty() || normals) {
     std::vector<float> displaced(out.positions.begin() + 3 * size_t{V}, out.positions.end());
     const double step64 = double(step);
@@ -251,6 +257,7 @@ Mesh subdivide(const Mesh& level, std::span<const int32_t> q, float step, std::v
         ring_normal(out.positions, V + e, ring, 4, false, n);
       }
       if (normals) std::copy(n, n + 3, normals->begin() + 3 * size_t{e});
+      if (o == kNone && !boundary.empty()) boundary_normals.insert(boundary_normals.end(), n, n + 3);
       if (q.empty()) continue;
       const double dq = double(q[e]) * step64;
       for (int c = 0; c < 3; ++c) {
@@ -259,6 +266,36 @@ Mesh subdivide(const Mesh& level, std::span<const int32_t> q, float step, std::v
       }
     }
     if (!q.empty()) std::copy(displaced.begin(), displaced.end(), out.positions.begin() + 3 * size_t{V});
+  }
+
+  // Section 7a (version 1.3): the k-th boundary edge's odd vertex moves by
+  // p_k * step along b = t x n / |t x n|, after section 7.
+  if (!boundary.empty()) {
+    const double step64 = double(boundary_step);
+    uint32_t k = 0;
+    for (uint32_t e = 0; e < E; ++e) {
+      const uint32_t h = t.edge_half[e];
+      if (t.twin[h] != kNone) continue;
+      const float* u = &level.positions[3 * size_t{t.T[h]}];
+      const float* w = &level.positions[3 * size_t{t.T[next(h)]}];
+      const double* n = &boundary_normals[3 * size_t{k}];
+      const double tv[3] = {double(w[0]) - double(u[0]), double(w[1]) - double(u[1]), double(w[2]) - double(u[2])};
+      const double c[3] = {tv[1] * n[2] - tv[2] * n[1], tv[2] * n[0] - tv[0] * n[2], tv[0] * n[1] - tv[1] * n[0]};
+      const double len = std::sqrt((c[0] * c[0] + c[1] * c[1]) + c[2] * c[2]);
+      double b[3] = {0.0, 0.0, 0.0};
+      if (len > 0) {
+        const double inv = 1 / len;  // one division
+        for (int i = 0; i < 3; ++i) b[i] = c[i] * inv;
+      }
+      if (boundary[k] == 0) {  // a zero value leaves section 7's position as it is
+        ++k;
+        continue;
+      }
+      const double dp = double(boundary[k]) * step64;
+      float* m = &out.positions[3 * (size_t{V} + e)];
+      for (int i = 0; i < 3; ++i) m[i] = static_cast<float>(double(m[i]) + dp * b[i]);
+      ++k;
+    }
   }
 
   // Section 4: triangle f becomes 4f+0..4f+3.

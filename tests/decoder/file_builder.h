@@ -16,9 +16,13 @@ namespace dbss::test {
 
 // With `crease_degrees` > 0, the control mesh's edges whose dihedral angle
 // is over it are tagged (creases_from_dihedral): a version 1.1 file.  With
-// `context`, every level is coded with coding 2: a version 1.2 file.
+// `context`, every level is coded with coding 2: a version 1.2 file.  With
+// `boundary_amplitude` > 0 (a mesh with a boundary), every level also has
+// boundary values in -amplitude..amplitude, in codings 1, 2, 0 by level: a
+// version 1.3 file.
 inline std::vector<uint8_t> build_file(const TriangleMesh& mesh, uint8_t levels, int32_t amplitude, float step,
-                                       uint32_t seed = 1, double crease_degrees = 0, bool context = false) {
+                                       uint32_t seed = 1, double crease_degrees = 0, bool context = false,
+                                       int32_t boundary_amplitude = 0) {
   auto draco = encode_control_mesh(mesh, {});
   auto decoded = decode_control_mesh(draco.value(), 1 << 24, 1 << 24);
   auto topo = build_topology(static_cast<uint32_t>(decoded.value().vertex_count()), decoded.value().triangles);
@@ -49,6 +53,15 @@ inline std::vector<uint8_t> build_file(const TriangleMesh& mesh, uint8_t levels,
     for (auto& q : level.q) {
       s = s * 1664525u + 1013904223u;
       q = amplitude ? static_cast<int32_t>((s >> 8) % (2 * uint32_t(amplitude) + 1)) - amplitude : 0;
+    }
+    if (boundary_amplitude > 0) {
+      level.boundary.step = 0.75f * level.step;
+      level.boundary.coding = static_cast<format::DisplacementCoding>(l % 3 == 1 ? 1 : l % 3 == 2 ? 2 : 0);
+      level.boundary.q.resize(*format::boundary_edge_count(control, l - 1u));
+      for (auto& q : level.boundary.q) {
+        s = s * 1664525u + 1013904223u;
+        q = static_cast<int32_t>((s >> 8) % (2 * uint32_t(boundary_amplitude) + 1)) - boundary_amplitude;
+      }
     }
     c.levels.push_back(std::move(level));
   }

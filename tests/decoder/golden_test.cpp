@@ -6,6 +6,7 @@
 //   build/bin/codec_tests "[.write-golden]"
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
@@ -31,7 +32,16 @@ struct Golden {
   float step;
   double crease_degrees = 0;  // > 0: a version 1.1 file with crease tags
   bool context = false;       // every level in coding 2: a version 1.2 file
+  int32_t boundary = 0;       // > 0: BDRY chunks of this amplitude, a version 1.3 file
 };
+
+// `m` without the triangles listed (a hole per triangle when they share
+// no vertex but the poles).
+TriangleMesh without_faces(TriangleMesh m, std::vector<uint32_t> faces) {
+  std::sort(faces.rbegin(), faces.rend());
+  for (uint32_t f : faces) m.triangles.erase(m.triangles.begin() + 3 * f, m.triangles.begin() + 3 * f + 3);
+  return m;
+}
 
 std::vector<Golden> goldens() {
   return {
@@ -48,6 +58,12 @@ std::vector<Golden> goldens() {
       {"torus-context-4-levels", test::jitter(test::torus(10, 5), 0.05f), 4, 40, 0.01f, 0, true},
       {"bipyramid9-context-3-levels", test::jitter(test::bipyramid(9), 0.1f, 9), 3, 2, 0.02f, 0, true},
       {"cube-creases-context-3-levels", test::cube(), 3, 20, 0.01f, 30, true},
+      // Version 1.3: BDRY chunks (dbss-format.md section 9c, decoding.md
+      // 7a) on an open grid and on a bipyramid with holes, in all three
+      // codings.
+      {"bordered-grid-boundary-3-levels", test::jitter(test::planar_grid(5, 4), 0.2f), 3, 50, 0.05f, 0, false, 30},
+      {"bipyramid9-holes-boundary-3-levels", test::jitter(without_faces(test::bipyramid(9), {0, 11}), 0.1f, 9), 3,
+       40, 0.02f, 0, true, 12},
   };
 }
 
@@ -89,7 +105,8 @@ TEST_CASE("golden files decode to the recorded bits at every level") {
 
 TEST_CASE("write golden files", "[.write-golden]") {
   for (const Golden& g : goldens()) {
-    const auto bytes = test::build_file(g.mesh, g.levels, g.amplitude, g.step, 1, g.crease_degrees, g.context);
+    const auto bytes =
+        test::build_file(g.mesh, g.levels, g.amplitude, g.step, 1, g.crease_degrees, g.context, g.boundary);
     REQUIRE(io::write_file_atomic(kDir + g.name + ".dbss", bytes).ok());
     std::ostringstream text;
     for (uint64_t h : level_hashes(bytes)) {

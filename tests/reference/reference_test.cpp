@@ -23,7 +23,8 @@ const std::string kDir = std::string(DBSS_SOURCE_DIR) + "/tests/golden/v1/";
 const char* const kGoldens[] = {"torus-4-levels", "icosahedron-4-levels", "bipyramid9-3-levels",
                                 "bordered-grid-3-levels", "cube-creases-4-levels", "roof-creases-3-levels",
                                 "cylinder-creases-3-levels", "torus-context-4-levels",
-                                "bipyramid9-context-3-levels", "cube-creases-context-3-levels"};
+                                "bipyramid9-context-3-levels", "cube-creases-context-3-levels",
+                                "bordered-grid-boundary-3-levels", "bipyramid9-holes-boundary-3-levels"};
 
 std::vector<uint8_t> read_bytes(const std::string& path) {
   std::ifstream in(path, std::ios::binary);

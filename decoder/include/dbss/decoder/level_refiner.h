@@ -39,6 +39,11 @@ class LevelRefiner {
   // resized to the odd count), moved by q * step.  `threads` >= 1; the
   // result is the same for any value.
   void refine(const OddChooser& choose, float step, std::vector<int32_t>& q, unsigned threads = 1);
+  // The same, then (format 1.3) each boundary odd vertex's in-surface value
+  // from `bchoose` (written to `bq`, resized to the boundary edge count),
+  // moved by that value * bstep across the boundary (decoding.md 7a).
+  void refine(const OddChooser& choose, float step, std::vector<int32_t>& q, const BoundaryChooser& bchoose,
+              float bstep, std::vector<int32_t>& bq, unsigned threads = 1);
 
   uint32_t level() const noexcept;
   // The current level; valid until the next refine().

@@ -18,3 +18,16 @@ using OddChooser = std::function<int32_t(uint32_t odd, const double point[3], co
                                          const float* u, const float* w)>;
 
 }  // namespace dbss
+
+namespace dbss {
+
+// Format 1.3 (spec/decoding.md section 7a): chooses the k-th boundary odd
+// vertex's in-surface integer (`odd` is its odd-vertex number).  `m` is its
+// binary32 position after the normal displacement, `b` its unit direction
+// across the boundary (t x n normalized; zero when degenerate), `n` its unit
+// normal, u and w its edge's ends.  Called in boundary-edge order from one
+// thread; the vertex then moves by the integer * step along b.
+using BoundaryChooser = std::function<int32_t(uint32_t k, uint32_t odd, const float m[3], const double b[3],
+                                              const double n[3], const float* u, const float* w)>;
+
+}  // namespace dbss

@@ -37,6 +37,10 @@ inline constexpr double kMeshDenseStepRatio = 1.5;
 struct MeshEncodeOptions {
   // kMeshDenseStepRatio; 1: one step for every level.
   double dense_step_ratio = kMeshDenseStepRatio;
+  // Format 1.3: boundary odd vertices also move across the boundary, within
+  // the surface, onto the input's boundary curve (a BDRY chunk per level
+  // that moves any).  false: normal displacements only (a 1.2 file).
+  bool boundary_values = true;
 };
 
 // The vertex counts of levels 0..levels of a control mesh of `vertices`,

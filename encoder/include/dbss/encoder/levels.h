@@ -39,6 +39,9 @@ struct LevelStats {
   size_t fitted = 0;  // samples taken to the local surface fit (the rest: to the hit itself)
   double mean_abs_displacement = 0;
   size_t bytes = 0;  // LEVL chunk data
+  // Format 1.3: boundary odd vertices, those with a non-zero in-surface
+  // value, and the BDRY chunk's data bytes (0 when the level has none).
+  size_t boundary_odd = 0, boundary_moved = 0, boundary_bytes = 0;
   format::DisplacementCoding coding = format::DisplacementCoding::byte_planes;
 };
 
@@ -78,6 +81,14 @@ struct LevelSampler {
   // level) for `odd` samples refining `even` vertices; empty: the options'
   // step at every level.
   std::function<float(uint32_t level, size_t odd, size_t even)> step;
+  // Format 1.3 (spec/decoding.md section 7a): the signed distance along the
+  // unit in-surface direction `b` (across the boundary, outwards) from
+  // boundary odd vertex `odd`, at `m` after its normal displacement, to the
+  // surface's boundary, clamped to half_length.  Empty: no boundary values
+  // (and no BDRY chunk).  Called from one thread, in boundary-edge order.
+  // `n` is the vertex's unit normal.
+  std::function<double(uint32_t odd, const double m[3], const double b[3], const double n[3], double half_length)>
+      boundary;
 };
 
 // `control` must be the Draco-decoded control mesh.  Displacements from

@@ -49,11 +49,25 @@ class MeshSurface {
   // input's boundary curve instead, so the levels' boundaries follow the
   // input's (a normal displacement cannot move it along the surface; this
   // is the nearest it gets).
-  Sample sample(const double p[3], const double n[3], double half_length, bool boundary) const;
+  // With `tangent` (a unit vector along the odd vertex's boundary edge),
+  // the boundary point taken is where the curve crosses the plane through
+  // p perpendicular to it (boundary_target), the point a vertex moving
+  // along its normal and across the boundary can reach.
+  Sample sample(const double p[3], const double n[3], double half_length, bool boundary,
+                const double* tangent = nullptr) const;
+  // The point of the input's boundary curve in the plane through p
+  // perpendicular to the unit vector t (near p): from p's closest boundary
+  // point, a few steps of projecting onto the plane and back onto the curve.
+  void boundary_target(const double p[3], const double t[3], double out[3]) const;
   // The closest point of the surface, or of its boundary curve (p itself
   // when the input has no boundary); both return the distance.
   double closest_point(const double p[3], double out[3]) const { return surface_.closest_point(p, out); }
   double closest_boundary_point(const double p[3], double out[3]) const;
+  // Format 1.3: the offset along the unit in-surface direction b from m
+  // (unit normal n) to the boundary curve's point in m's plane across the
+  // edge (boundary_target with t = n x b), clamped to half_length (0 when
+  // the input has no boundary).
+  double boundary_offset(const double m[3], const double b[3], const double n[3], double half_length) const;
   bool has_boundary() const noexcept { return rim_.triangle_count() > 0; }
 
  private:

@@ -61,6 +61,10 @@ inline constexpr uint16_t kCreaseVersionMinor = 1;
 // The minor version a file with a LEVL of coding 2 (context) declares (and
 // needs): a 1.1 reader rejects such a LEVL as an unknown coding.
 inline constexpr uint16_t kContextCodingVersionMinor = 2;
+inline constexpr ChunkType kBdry{'B', 'D', 'R', 'Y'};  // boundary odd vertices' in-surface values (version 1.3)
+// The minor version a file with a BDRY chunk declares (and needs): a 1.2
+// reader rejects the chunk as an unknown critical type.
+inline constexpr uint16_t kBoundaryVersionMinor = 3;
 
 struct Header {
   uint16_t version_major = kVersionMajor;
@@ -92,6 +96,10 @@ std::optional<MeshCounts> counts_at_level(const MeshCounts& control, uint32_t le
 // level - 1.  nullopt on overflow as above.
 std::optional<uint64_t> odd_vertex_count(const MeshCounts& control, uint32_t level);
 
+// Number of boundary edges of level `level` (0 = control mesh): 2E - 3F
+// (spec section 9c); nullopt on overflow or if 2E < 3F.
+std::optional<uint64_t> boundary_edge_count(const MeshCounts& control, uint32_t level);
+
 struct TocEntry {
   ChunkType type;
   uint32_t length = 0;  // bytes of the chunk's data (without the 12 framing bytes)
@@ -113,11 +121,24 @@ inline const char* coding_name(DisplacementCoding c) {
   return c == DisplacementCoding::byte_planes ? "byte_planes" : c == DisplacementCoding::varint ? "varint" : "context";
 }
 
+// A level's BDRY chunk (version 1.3, spec section 9c): one integer per
+// boundary edge of the level before, in canonical edge order, moving its
+// odd vertex by q * step across the boundary within the surface.  Empty q:
+// the level has no BDRY chunk.
+struct BoundaryValues {
+  DisplacementCoding coding = DisplacementCoding::varint;
+  float step = 0;
+  std::vector<int32_t> q;
+  bool empty() const noexcept { return q.empty(); }
+  friend bool operator==(const BoundaryValues&, const BoundaryValues&) = default;
+};
+
 struct Level {
   uint8_t index = 0;  // 1..level_count
   DisplacementCoding coding = DisplacementCoding::byte_planes;
   float step = 0;                  // Δ_l in model units, finite and > 0
   std::vector<int32_t> q;          // one per odd vertex, in the spec's odd-vertex order
+  BoundaryValues boundary;         // version 1.3; empty without a BDRY chunk
   friend bool operator==(const Level&, const Level&) = default;
 };
 

@@ -20,6 +20,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -111,6 +112,10 @@ class Reader {
   Status on_level();
   Status on_meta();
   Status on_creases();
+  Status on_boundary();
+  // The fields and payload of a LEVL or BDRY chunk (spec sections 9, 9c).
+  Status parse_values(const char* kind, uint64_t expect, const char* count_name, const char* expect_says,
+                      uint8_t codings, DisplacementCoding& coding, float& step, std::vector<int32_t>& q);
   std::string chunk_name() const;
 
   Limits limits_;
@@ -143,6 +148,7 @@ class Reader {
   bool has_creases_ = false;
   Creases creases_;
   std::vector<Level> levels_;
+  std::optional<BoundaryValues> pending_boundary_;  // a verified BDRY waiting for its LEVL
   std::vector<MetaEntry> metadata_;
   size_t ancillary_skipped_ = 0;
   std::vector<Status> warnings_;

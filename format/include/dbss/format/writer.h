@@ -49,6 +49,9 @@ std::vector<uint8_t> encode_header(const Header& header);
 // |q| <= kMaxAbsDisplacement) and zstd-compressed at `zstd_level`.
 Result<std::vector<uint8_t>> encode_level(const Level& level, int zstd_level);
 
+// The data bytes of the BDRY chunk of `level` (version 1.3): its boundary
+// values, laid out as a LEVL with boundary.q for q.  Fails as encode_level.
+Result<std::vector<uint8_t>> encode_boundary(const Level& level, int zstd_level);
 // The data bytes of a CTRL chunk.
 std::vector<uint8_t> encode_control(ControlCodec codec, std::span<const uint8_t> payload);
 
@@ -64,7 +67,8 @@ Result<std::vector<uint8_t>> encode_metadata(const std::vector<MetaEntry>& entri
 std::vector<uint8_t> assemble(std::span<const uint8_t> head_data, std::span<const RawChunk> body);
 
 // The lowest minor version that can hold `contents`: 0, 1 with crease
-// tags, 2 with a level coded DisplacementCoding::context.  Writers that
+// tags, 2 with a level coded DisplacementCoding::context, 3 with a level
+// that has boundary values (a BDRY chunk).  Writers that
 // want the widest readership set header.version_minor to this.
 uint16_t minimum_version_minor(const FileContents& contents);
 
