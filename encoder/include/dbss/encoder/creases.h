@@ -48,6 +48,10 @@ struct CreaseOptions {
   // Sample next to a crease from the two sides' planes (sampling.cpp's
   // wedge), not from a surface fit over both.
   bool wedge = true;
+  // The wedge only within reach of a tagged crease edge (crease_lines.h):
+  // else a smooth region curved tightly enough (radius about 1.5 times the
+  // wedge's 32-point neighbourhood) can pass for two planes.
+  bool wedge_gate = true;
   // Relax the flat faces' vertices in their plane after the alignment (crease_align.h).
   bool relax = true;
 };
