@@ -38,12 +38,15 @@ TEST_CASE("crease lines: near a tagged edge within its reach and not elsewhere")
   const PointIndex index(pc);
   const CreaseLines lines(cube, tags, index, 0.5, 32);
   CHECK(lines.size() == 12);  // the cube's edges, not its faces' diagonals
-  const double beside[3] = {0.99, 0.98, 0.3}, corner[3] = {1.02, -1.01, 0.99}, far[3] = {0, 0, 3}, inside[3] = {0, 0, 0};
+  const double beside[3] = {0.99, 0.98, 0.3}, corner[3] = {1.02, -1.01, 0.99}, far[3] = {0, 0, 3}, face[3] = {0, 0, 1},
+               centre[3] = {0, 0, 0};
   CHECK(lines.near(beside));
   CHECK(lines.near(corner));
   CHECK_FALSE(lines.near(far));
-  // 1 from every edge: within half an edge (2) plus a neighbourhood.
-  CHECK(lines.near(inside));
+  // A face's centre is 1 from four edges: within half an edge (2) plus a
+  // neighbourhood; the cube's centre is 1.41 from the nearest.
+  CHECK(lines.near(face));
+  CHECK_FALSE(lines.near(centre));
   // No tags, no lines.
   const CreaseLines none(cube, format::Creases{}, index, 0.5, 32);
   CHECK(none.empty());
@@ -53,11 +56,15 @@ TEST_CASE("crease lines: near a tagged edge within its reach and not elsewhere")
 TEST_CASE("a thin tube with the crease lines elsewhere: no wedge samples and the same distances as without the wedge") {
   // Tube radius 0.05 at 18k points: its 32 nearest points span about 1.5
   // radii, so two fitted planes can meet at over 30 degrees there.
+  // The cube's points are in the cloud too: a part with creases and,
+  // elsewhere, a tightly curved smooth region.
   const TriangleMesh tube = test::torus(160, 24, 1.0f, 0.05f);
-  const PointCloud pc = sampled(tube, 18000);
+  const TriangleMesh cube = moved(test::cube(), 10);
+  PointCloud pc = sampled(tube, 18000);
+  const PointCloud cube_points = sampled(cube, 20000);
+  pc.xyz.insert(pc.xyz.end(), cube_points.xyz.begin(), cube_points.xyz.end());
   const PointIndex index(pc);
   const std::vector<float> normals = estimate_point_normals(index, 2);
-  const TriangleMesh cube = moved(test::cube(), 10);
   const CreaseLines lines(cube, test::creases_from_dihedral(cube, 30), index, 0.5, 32);
   REQUIRE(lines.size() == 12);
   const double min_cos = std::cos(30 * 3.14159265358979323846 / 180);
