@@ -36,9 +36,6 @@ constexpr size_t kMaxValence = 10;
 // Relaxation on flat faces: triangles within about 1 degree of one plane.
 const double kFlatFan = std::cos(1 * kPi / 180);
 constexpr int kRelaxRounds = 8;
-// A relaxed triangle stays on the points: its probes within this many point
-// spacings of the nearest point (or no farther than before the move).
-constexpr double kOnPoints = 2;
 // The fewest points a vertex's neighbourhood holds.
 constexpr size_t kNeighbourhood = 64;
 // Two planes are one plane of the part when their normals are this close.
@@ -469,37 +466,6 @@ void align_to_features(TriangleMesh& m, const PointIndex& points, const CreaseOp
     for (uint32_t f = 0; f < m.triangle_count(); ++f)
       for (int k = 0; k < 3; ++k) tris[m.triangles[3 * f + k]].push_back(f);
     std::vector<uint32_t> ring;
-    const PointCloud& pc = points.points();
-    // How far the triangle f's points that move with v (the midpoints of
-    // its edges at v, its centroid) are from the nearest point: a flat
-    // triangle of the face is on the points; one that reaches over a notch
-    // of a non-convex face is not, and its odd vertices land over the
-    // notch, in the plane, where the sampler finds the surface below.
-    const auto off_points = [&](uint32_t f, uint32_t v) {
-      const uint32_t* t = &m.triangles[3 * f];
-      const V3 a = pos(m, t[0]), b = pos(m, t[1]), c = pos(m, t[2]), pv = pos(m, v);
-      double worst = 0;
-      const auto probe = [&](const V3& q) {
-        const float qf[3] = {static_cast<float>(q[0]), static_cast<float>(q[1]), static_cast<float>(q[2])};
-        const V3 x = point_of(pc, points.nearest(qf));
-        worst = std::max(worst, std::sqrt(dot(sub(x, q), sub(x, q))));
-      };
-      probe({(a[0] + b[0] + c[0]) / 3, (a[1] + b[1] + c[1]) / 3, (a[2] + b[2] + c[2]) / 3});
-      for (int k = 0; k < 3; ++k)
-        if (t[k] != v) {
-          const V3 x = pos(m, t[k]);
-          probe({(pv[0] + x[0]) / 2, (pv[1] + x[1]) / 2, (pv[2] + x[2]) / 2});
-        }
-      return worst;
-    };
-    // The points' spacing at p: the distance to its 4th nearest.
-    const auto spacing = [&](const V3& p) {
-      const float q[3] = {static_cast<float>(p[0]), static_cast<float>(p[1]), static_cast<float>(p[2])};
-      uint32_t idx[4];
-      float dist2[4];
-      const size_t found = points.nearest_k(q, 4, idx, dist2);
-      return found ? std::sqrt(double{dist2[found - 1]}) : 0.0;
-    };
     for (int round = 0; round < kRelaxRounds; ++round)
       for (uint32_t v = 0; v < n; ++v) {
         if (snapped[v] || feature[v].planes || tris[v].size() < 3) continue;
@@ -516,23 +482,19 @@ void align_to_features(TriangleMesh& m, const PointIndex& points, const CreaseOp
         V3 d = sub(mean, pv);
         const double h = dot(d, nv);
         for (int a = 0; a < 3; ++a) d[a] = 0.5 * (d[a] - h * nv[a]);  // in the plane, half way
-        std::vector<double> before, gap_before;
+        std::vector<double> before;
         for (uint32_t f : tris[v]) {
           const uint32_t* t = &m.triangles[3 * f];
           before.push_back(quality(pos(m, t[0]), pos(m, t[1]), pos(m, t[2])));
-          gap_before.push_back(off_points(f, v));
         }
         for (int a = 0; a < 3; ++a) m.positions[3 * size_t{v} + a] = static_cast<float>(pv[a] + d[a]);
-        // Kept when no triangle turns over, the worst one gets no worse and
-        // none leaves the points (spans a notch of a non-convex face).
+        // Kept when no triangle turns over and the worst one gets no worse.
         bool ok = true;
         double worst_before = INFINITY, worst_after = INFINITY;
-        const double tolerance = kOnPoints * spacing(pv);
         for (size_t j = 0; j < tris[v].size(); ++j) {
           const uint32_t* t = &m.triangles[3 * tris[v][j]];
           const double q = quality(pos(m, t[0]), pos(m, t[1]), pos(m, t[2]));
           ok = ok && dot(unit(face_normal(m, tris[v][j])), nv) > kFlatFan;
-          ok = ok && off_points(tris[v][j], v) <= std::max(gap_before[j], tolerance);
           worst_before = std::min(worst_before, before[j]), worst_after = std::min(worst_after, q);
         }
         if (!ok || worst_after < worst_before)
