@@ -14,10 +14,12 @@
 //     (CreaseOptions::collapse), the 'on' columns with them (with --collapse): before/after in one run
 //   --against-no-relax: likewise without the flat faces' relaxation (CreaseOptions::relax)
 //   --against-no-wedge: likewise without the wedge sampling next to creases (CreaseOptions::wedge)
+//   --against-no-wedge-gate: likewise with the wedge anywhere, not only near tagged edges (CreaseOptions::wedge_gate)
 //   --fixed-control: the default face count, not chosen by rate-distortion (EncodeOptions::choose_control)
 //   --no-shape: without the control mesh's shaping pass (edge flips, relaxation)
 //   CREASE_BENCH_DUMP=DIR (environment): each level written to DIR/SHAPE-{on,off}-L.off and
-//   the level-0 tags (edge ends, "c" corners) to DIR/SHAPE-creases.txt, for a closer look
+//   the level-0 tags (edge ends, "c" corners) to DIR/SHAPE-creases.txt, each vertex's offset to the
+//   true mesh (x y z per line) to DIR/SHAPE-{on,off}-L.dist, for a closer look
 //   SHAPE: cube, cylinder, roof, sphere, torus (smooth: no crease should be found), or a mesh file (absent with --skip-absent: exit 77 unless CI=true)
 #include <algorithm>
 #include <array>
@@ -96,7 +98,7 @@ int main(int argc, char** argv) {
   uint32_t levels = 4;
   double angle = 30;
   std::vector<std::string> shapes;
-  bool skip_absent = false, shaping = true, split = false, against_no_collapse = false, against_no_wedge = false, against_no_relax = false, fixed_control = false, collapse = false;
+  bool skip_absent = false, shaping = true, split = false, against_no_collapse = false, against_no_wedge = false, against_no_relax = false, against_no_gate = false, fixed_control = false, collapse = false;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--points" && i + 1 < argc) points = std::strtoull(argv[++i], nullptr, 10);
@@ -110,6 +112,7 @@ int main(int argc, char** argv) {
     else if (a == "--fixed-control") fixed_control = true;
     else if (a == "--against-no-wedge") against_no_wedge = true;
     else if (a == "--against-no-relax") against_no_relax = true;
+    else if (a == "--against-no-wedge-gate") against_no_gate = true;
     else if (a == "--collapse") collapse = true;
     else if (!a.empty() && a[0] == '-') return std::fprintf(stderr, "crease_bench: unknown option %s\n", a.c_str()), 1;
     else shapes.push_back(a);
@@ -147,7 +150,7 @@ int main(int argc, char** argv) {
     for (int on = 0; on < 2; ++on) {
       dbss::EncodeOptions eo;
       eo.levels = levels;
-      const bool against = against_no_collapse || against_no_wedge || against_no_relax;
+      const bool against = against_no_collapse || against_no_wedge || against_no_relax || against_no_gate;
       eo.creases.angle_degrees = on || against ? angle : 0;
       // 'on': the defaults (with --collapse, collapses too); 'off' with an
       // --against-no-X: the same less X.
@@ -155,6 +158,7 @@ int main(int argc, char** argv) {
       eo.creases.collapse = (defaults.collapse || collapse) && (on || !against_no_collapse);
       eo.creases.wedge = defaults.wedge && (on || !against_no_wedge);
       eo.creases.relax = defaults.relax && (on || !against_no_relax);
+      eo.creases.wedge_gate = defaults.wedge_gate && (on || !against_no_gate);
       eo.control.shape.enabled = shaping;
       eo.creases.split = split;
       eo.choose_control = !fixed_control;
@@ -179,6 +183,17 @@ int main(int argc, char** argv) {
               std::fprintf(f, "3 %u %u %u\n", m.triangles[3 * i], m.triangles[3 * i + 1], m.triangles[3 * i + 2]);
             std::fclose(f);
           }
+          // Each vertex's offset to its nearest point of the true mesh.
+          if (FILE* f = std::fopen((path.substr(0, path.size() - 4) + ".dist").c_str(), "w")) {
+            const dbss::TriangleTree tree(truth);
+            for (size_t i = 0; i < m.vertex_count(); ++i) {
+              const double v[3] = {m.positions[3 * i], m.positions[3 * i + 1], m.positions[3 * i + 2]};
+              double c[3];
+              tree.closest_point(v, c);
+              std::fprintf(f, "%.9g %.9g %.9g\n", v[0] - c[0], v[1] - c[1], v[2] - c[2]);
+            }
+            std::fclose(f);
+          }
           if (l == 0 && !enc.contents.creases.empty())
             if (FILE* f = std::fopen((std::string(dump) + "/" + shape + "-creases.txt").c_str(), "w")) {
               auto t = dbss::build_topology(static_cast<uint32_t>(m.vertex_count()), m.triangles).value();
@@ -199,9 +214,9 @@ int main(int argc, char** argv) {
     }
     const Run& r = runs[1];
     std::printf("### %s\n", shape.c_str());
-    for (int on = against_no_collapse || against_no_wedge || against_no_relax ? 0 : 1; on < 2; ++on) {
+    for (int on = against_no_collapse || against_no_wedge || against_no_relax || against_no_gate ? 0 : 1; on < 2; ++on) {
       const dbss::CreaseStats& s = runs[on].stats;
-      if (against_no_collapse || against_no_wedge || against_no_relax) std::printf("%s: ", on ? "after" : "before");
+      if (against_no_collapse || against_no_wedge || against_no_relax || against_no_gate) std::printf("%s: ", on ? "after" : "before");
       std::printf("aligned: %zu vertices moved onto feature lines, %zu merged into a neighbour on one, %zu flat-face moves, %zu edges flipped and %zu split along "
                   "them, %zu chain edges; creases: %zu edges, %zu corners, %zu darts, feature length %.3f; tags %zu bytes\n",
                   s.aligned, s.align_collapses, s.align_relaxed, s.align_flips, s.align_splits, s.chain_edges, s.creases, s.corners, s.darts,
@@ -216,6 +231,8 @@ int main(int argc, char** argv) {
     for (const auto& ls : r.levels) std::printf(" %zu", ls.clamped);
     std::printf("; nearest-point fallback");
     for (const auto& ls : r.levels) std::printf(" %zu", ls.by_nearest);
+    std::printf("; wedge samples (off/on)");
+    for (size_t l = 0; l < r.levels.size(); ++l) std::printf(" %zu/%zu", l < runs[0].levels.size() ? runs[0].levels[l].by_wedge : 0, r.levels[l].by_wedge);
     std::printf("; odd vertices");
     for (const auto& ls : r.levels) std::printf(" %zu", ls.odd);
     std::printf("\n\n");

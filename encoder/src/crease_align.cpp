@@ -57,6 +57,17 @@ double quality(V3 a, V3 b, V3 c) {
 
 uint64_t key(uint32_t u, uint32_t v) { return (uint64_t{u} << 32) | v; }
 
+// The vertices of `v`'s triangles `fan` other than v, sorted, each once: as
+// many as the triangles when v is interior (fewer on a boundary).
+void sorted_ring(const TriangleMesh& m, const std::vector<uint32_t>& fan, uint32_t v, std::vector<uint32_t>& out) {
+  out.clear();
+  for (uint32_t f : fan)
+    for (int k = 0; k < 3; ++k)
+      if (m.triangles[3 * f + k] != v) out.push_back(m.triangles[3 * f + k]);
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+}
+
 V3 point_of(const PointCloud& pc, uint32_t i) { return {pc.xyz[3 * size_t{i}], pc.xyz[3 * size_t{i} + 1], pc.xyz[3 * size_t{i} + 2]}; }
 
 // A point's normal from its kNormalPoints nearest: the plane through the
@@ -356,19 +367,11 @@ void align_to_features(TriangleMesh& m, const PointIndex& points, const CreaseOp
     for (uint32_t f = 0; f < m.triangle_count(); ++f)
       for (int k = 0; k < 3; ++k) tris[m.triangles[3 * f + k]].push_back(f);
     std::vector<uint8_t> dead_triangle(m.triangle_count(), 0), alive(n, 1);
-    const auto ring = [&](uint32_t v, std::vector<uint32_t>& out) {  // v's neighbours, sorted
-      out.clear();
-      for (uint32_t f : tris[v])
-        for (int k = 0; k < 3; ++k)
-          if (m.triangles[3 * f + k] != v) out.push_back(m.triangles[3 * f + k]);
-      std::sort(out.begin(), out.end());
-      out.erase(std::unique(out.begin(), out.end()), out.end());
-    };
     std::vector<uint32_t> ring_v, ring_u, common;
     for (uint32_t v = 0; v < n; ++v) {
       if (snapped[v] || !feature[v].planes || !alive[v]) continue;
       if (!(move[v] <= (feature[v].planes == 3 ? kCornerReach : kLineReach) * mean_edge[v] / edges[v])) continue;
-      ring(v, ring_v);
+      sorted_ring(m, tris[v], v, ring_v);
       if (ring_v.size() != tris[v].size()) continue;  // on a boundary
       // The neighbour on v's line (or corner) nearest v.
       uint32_t best = n;
@@ -382,7 +385,7 @@ void align_to_features(TriangleMesh& m, const PointIndex& points, const CreaseOp
       }
       if (best == n) continue;
       const uint32_t u = best;
-      ring(u, ring_u);
+      sorted_ring(m, tris[u], u, ring_u);
       if (ring_u.size() != tris[u].size()) continue;
       common.clear();
       std::set_intersection(ring_v.begin(), ring_v.end(), ring_u.begin(), ring_u.end(), std::back_inserter(common));
@@ -470,12 +473,7 @@ void align_to_features(TriangleMesh& m, const PointIndex& points, const CreaseOp
         bool flat = true;
         for (uint32_t f : tris[v]) flat = flat && dot(unit(face_normal(m, f)), nv) > kFlatFan;
         if (!flat) continue;
-        ring.clear();
-        for (uint32_t f : tris[v])
-          for (int k = 0; k < 3; ++k)
-            if (m.triangles[3 * f + k] != v) ring.push_back(m.triangles[3 * f + k]);
-        std::sort(ring.begin(), ring.end());
-        ring.erase(std::unique(ring.begin(), ring.end()), ring.end());
+        sorted_ring(m, tris[v], v, ring);
         if (ring.size() != tris[v].size()) continue;  // on a boundary
         const V3 pv = pos(m, v);
         V3 mean{0, 0, 0};

@@ -122,6 +122,7 @@ Status encode_over_control(Encoding& e, const PointIndex& index, const EncodeOpt
   lo.threads = std::max(1u, o.threads);
   lo.creases = c.creases;
   lo.wedge = o.creases.wedge;
+  lo.wedge_gate = o.creases.wedge_gate;
   if (o.on_progress)
     lo.on_level = [&](uint32_t l) {
       o.on_progress("sampling level " + std::to_string(l) + " of " + std::to_string(level_count));

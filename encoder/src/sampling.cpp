@@ -6,12 +6,19 @@
 #include <cmath>
 #include <vector>
 
+#include "dbss/encoder/crease_lines.h"
 #include "dbss/encoder/point_distances.h"
 
 namespace dbss {
 
 namespace {
 using V = Eigen::Vector3d;
+// Two points are of one sheet when their offsets along the sampling line
+// differ by at most this times the sum of their distances from it.
+constexpr double kSteep = 3;
+// The fallback plane's points when the cylinder holds two sheets.
+constexpr size_t kPlanePoints = 16;
+constexpr double kAnchorReach = 1.5;
 
 // Ray-triangle intersection (Moller-Trumbore) for the full line p + t n.
 bool line_hits(const V& p, const V& n, const V& a, const V& b, const V& c, double& t) {
@@ -163,21 +170,49 @@ Sample sample_displacement(const PointIndex& index, const double pd[3], const do
     out.distance = std::clamp(d, -half_length, half_length);
     return out;
   };
-  if (const PointSides* wedge = original_sides; wedge && wedge->wedge) {
+  if (const PointSides* wedge = original_sides; wedge && wedge->wedge && (!wedge->lines || wedge->lines->near(pd))) {
     double t = 0;
     if (wedge_hit(index, pd, nd, *wedge, t) && std::abs(t) <= half_length) {
       out.source = SampleSource::plane;
       out.fitted = true;
+      out.wedge = true;
       out.distance = t;
       return out;
     }
   }
   if (cyl.size() >= 3) {
     // Candidate triangles from the points nearest the line; the hit nearest
-    // to the vertex wins, so the closest sheet of a thin part is taken.
-    const size_t m = std::min<size_t>(cyl.size(), 7);
-    std::partial_sort(cyl.begin(), cyl.begin() + m, cyl.end(),
+    // to the vertex wins, so the closest sheet of a thin part is taken.  The
+    // candidates are the sheet's: of the points about as near the line as
+    // the 7 nearest (within kAnchorReach of the 7th: some of them on each
+    // face), the one nearest the vertex along it anchors the sheet, and a point counts
+    // when a surface through both could pass (rising at most kSteep times
+    // its run, about 72 degrees to the plane normal to the line).  Else,
+    // where a thin part's other face is as near the line as its own (the
+    // fandisk's flange: faces 0.1 apart, points 0.005 apart), triangles of
+    // two points of one face and one of the other hit between the faces, on
+    // neither, and won as the nearest (level 1 of the fandisk: odd vertices
+    // on the face sampled 0.03-0.05 inside it).
+    const size_t first = std::min<size_t>(cyl.size(), 7);
+    std::partial_sort(cyl.begin(), cyl.begin() + first, cyl.end(),
                       [](const Cand& a, const Cand& b) { return a.horizontal < b.horizontal; });
+    Cand anchor = cyl[0];
+    for (const Cand& x : cyl)
+      if (x.horizontal <= kAnchorReach * cyl[first - 1].horizontal && std::abs(x.vertical) < std::abs(anchor.vertical)) anchor = x;
+    const auto sheet_end = std::stable_partition(cyl.begin(), cyl.end(), [&](const Cand& c) {
+      return std::abs(c.vertical - anchor.vertical) <= kSteep * (c.horizontal + anchor.horizontal);
+    });
+    // One sheet (every point of the cylinder on it, as on any smooth shape
+    // whose curvature radius is over the cylinder's): the candidates and
+    // the fallback plane's points are the same as without the test.
+    const bool one_sheet = sheet_end == cyl.end();
+    const size_t sheet = static_cast<size_t>(sheet_end - cyl.begin());
+    size_t m = first;
+    if (!one_sheet) {
+      m = std::min<size_t>(sheet, 7);
+      std::partial_sort(cyl.begin(), cyl.begin() + m, sheet_end,
+                        [](const Cand& a, const Cand& b) { return a.horizontal < b.horizontal; });
+    }
     double best = 0;
     bool hit = false;
     for (size_t i = 0; i < m; ++i)
@@ -189,16 +224,24 @@ Sample sample_displacement(const PointIndex& index, const double pd[3], const do
             best = t, hit = true;
         }
     if (hit) return finish(best, SampleSource::triangle);
-    // Plane through the cylinder's points.
+    // Plane through the cylinder's points; with two sheets, through the
+    // kPlanePoints of the vertex's sheet nearest the line (the sheet's cone
+    // takes in the other face's points farther out).
+    size_t count = cyl.size();
+    if (!one_sheet) {
+      count = std::min<size_t>(sheet, kPlanePoints);
+      std::partial_sort(cyl.begin(), cyl.begin() + count, sheet_end,
+                        [](const Cand& a, const Cand& b) { return a.horizontal < b.horizontal; });
+    }
     V c = V::Zero();
-    for (const Cand& x : cyl) c += point(x.point);
-    c /= static_cast<double>(cyl.size());
+    for (size_t i = 0; i < count; ++i) c += point(cyl[i].point);
+    c /= static_cast<double>(count);
     Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
-    for (const Cand& x : cyl) cov += (point(x.point) - c) * (point(x.point) - c).transpose();
+    for (size_t i = 0; i < count; ++i) cov += (point(cyl[i].point) - c) * (point(cyl[i].point) - c).transpose();
     const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
     const V m3 = eig.eigenvectors().col(0);
     const double nm = n.dot(m3);
-    if (std::abs(nm) > 0.3) return finish((c - p).dot(m3) / nm, SampleSource::plane);
+    if (count >= 3 && std::abs(nm) > 0.3) return finish((c - p).dot(m3) / nm, SampleSource::plane);
   }
   // Nearest point's offset along the normal.
   const uint32_t i = index.nearest(q);

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <random>
 
 #include "../shapes.h"
 #include "dbss/decoder/topology.h"
@@ -235,4 +236,30 @@ TEST_CASE("sampler on a thin slab: the sheet nearer the vertex wins") {
   CHECK(b.source == SampleSource::triangle);
   CHECK(b.distance == Approx(-0.1).margin(1e-7));
   CHECK(!a.clamped);
+}
+
+TEST_CASE("sampler on a thin part: a triangle bridging its two faces is no sample") {
+  // The fandisk's flange: two faces 0.1 apart, points at random on both,
+  // the line through a point of the top face along its normal, in a
+  // cylinder (0.15) much wider than the part is thin.  Among the 7 points
+  // nearest the line some are the bottom face's; a triangle of two top
+  // points and a bottom one, nearly along the line, hits between the faces,
+  // on neither, and as the nearest hit it used to be the sample when no
+  // triangle of top points met the line.
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(-0.5, 0.5);
+  PointCloud pc;
+  for (int i = 0; i < 40000; ++i) pc.xyz.insert(pc.xyz.end(), {float(u(rng)), float(u(rng)), i % 2 ? 0.0f : -0.1f});
+  const PointIndex index(pc);
+  const double up[3] = {0, 0, 1};
+  size_t off = 0, probes = 0;
+  for (int i = 0; i < 20; ++i)
+    for (int j = 0; j < 20; ++j) {
+      const double p[3] = {-0.3 + 0.03 * i, -0.3 + 0.03 * j, 0};
+      const Sample s = sample_displacement(index, p, up, 0.15, 0.15, false);
+      off += std::abs(s.distance) > 0.01;
+      ++probes;
+    }
+  CAPTURE(probes, off);
+  CHECK(off == 0);
 }

@@ -48,7 +48,16 @@ struct CreaseOptions {
   // Sample next to a crease from the two sides' planes (sampling.cpp's
   // wedge), not from a surface fit over both.
   bool wedge = true;
-  // Relax the flat faces' vertices in their plane after the alignment (crease_align.h).
+  // The wedge only within reach of a tagged crease edge (crease_lines.h):
+  // else a smooth region curved tightly enough (radius about 1.5 times the
+  // wedge's 32-point neighbourhood) can pass for two planes.
+  bool wedge_gate = true;
+  // Relax the flat faces' vertices in their plane after the alignment
+  // (crease_align.h).  It once raised the fandisk's level 1 (3.1e-4 ->
+  // 4.6e-4): not the relaxation itself but the sampler, which on the
+  // fandisk's thin flange took triangles bridging its two faces; with the
+  // sampler keeping to one sheet (sampling.cpp) it lowers level 1 on all
+  // five shapes of bench/crease_bench.md (seventh session).
   bool relax = true;
 };
 

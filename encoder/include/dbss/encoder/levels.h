@@ -29,6 +29,7 @@ struct LevelEncodeOptions {
   std::function<void(uint32_t level)> on_level;  // called as each level starts; may be empty
   format::Creases creases;  // the control mesh's crease tags (empty: none), as the file holds them
   bool wedge = true;        // with creases: CreaseOptions::wedge
+  bool wedge_gate = true;   // ... only near a tagged edge: CreaseOptions::wedge_gate
 };
 
 struct LevelStats {
@@ -37,6 +38,7 @@ struct LevelStats {
   float step = 0;
   size_t clamped = 0, by_triangle = 0, by_plane = 0, by_nearest = 0;
   size_t fitted = 0;  // samples taken to the local surface fit (the rest: to the hit itself)
+  size_t by_wedge = 0;  // of by_plane: from the two sides' planes next to a crease
   double mean_abs_displacement = 0;
   size_t bytes = 0;  // LEVL chunk data
   // Format 1.3: boundary odd vertices, those with a non-zero in-surface

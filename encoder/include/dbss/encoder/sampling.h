@@ -22,6 +22,7 @@ struct Sample {
   bool fitted = false;   // distance is to the local surface fit (surface_fit.h) there
   bool clamped = false;  // |distance| was cut to the limit
   double spread = 0;     // the fit's standard error at the line when fitted (SurfaceFit::spread), else 0
+  bool wedge = false;    // from the two sides' planes next to a crease (PointSides::wedge)
 };
 
 // Points in the local surface fit around the line's first hit: enough to

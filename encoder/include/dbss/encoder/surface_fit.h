@@ -14,6 +14,8 @@
 
 namespace dbss {
 
+class CreaseLines;
+
 struct FitScratch {
   std::vector<uint32_t> index;
   std::vector<float> dist2;
@@ -30,6 +32,8 @@ struct PointSides {
   double min_cos = 0;
   // Next to a feature, the line's hit on the two sides' planes (sampling.cpp).
   bool wedge = true;
+  // The wedge only within reach of these tagged crease edges; null: anywhere.
+  const CreaseLines* lines = nullptr;
   bool agrees(uint32_t i, const double n[3]) const {
     const float* m = normals->data() + 3 * size_t{i};
     return std::abs(m[0] * n[0] + m[1] * n[1] + m[2] * n[2]) >= min_cos;
