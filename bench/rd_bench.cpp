@@ -10,7 +10,12 @@
 //
 // usage: rd_bench [--points N] [--noise F] [--levels L] [--qp 8,10,11,12]
 //                 [--samples S] [--seed S] [--methods dbss,afront,poisson]
-//                 [--csv OUT.csv] [--skip-absent] [MESH_FILE...]
+//                 [--csv OUT.csv] [--peers IN.csv] [--control-bits B] [--skip-absent]
+//                 [--fixed-control] [MESH_FILE...]
+//   --peers: the peers' rows for each shape are read from the CSV of an
+//   earlier run (same --points, --noise, --seed and --samples) instead of
+//   reconstructing again (Poisson takes minutes on the armadillo under
+//   load); a shape the CSV lacks runs its peers as usual.
 //   default meshes: armadillo, fandisk, eight and knot1 from
 //   test-data/data/meshes/ (scripts/fetch-test-data.sh).
 #include <chrono>
@@ -48,13 +53,16 @@ struct Options {
   bool dbss = true, afront = true, poisson = true;
   bool fixed_control = false;  // dbss over the default control mesh only (EncodeOptions::choose_control off): the before
   bool skip_absent = false;  // the ctest entry: an absent mesh skips (exit 77) unless CI=true
+  int control_bits = 0;      // EncodeOptions::control_bits (0: the encoder's own choice)
   std::string csv;
+  std::string peers_csv;     // peer rows from an earlier run's CSV
   std::vector<std::string> meshes;
 };
 
 constexpr const char* kUsage =
     "usage: rd_bench [--points N] [--noise F] [--levels L] [--qp 8,10,11,12] [--samples S] [--seed S]\n"
-    "                [--methods dbss,afront,poisson] [--csv OUT.csv] [--skip-absent] [--fixed-control]\n"
+    "                [--methods dbss,afront,poisson] [--csv OUT.csv] [--peers IN.csv] [--control-bits B]\n"
+    "                [--skip-absent] [--fixed-control]\n"
     "                [MESH_FILE...]\n";
 
 // "L3", "qp 11".  (Appending, not `"L" + std::to_string(l)`, which GCC 12
@@ -85,6 +93,8 @@ bool parse(int argc, char** argv, Options& o) {
     else if (a == "--samples" && has_value) o.samples = std::strtoull(argv[++i], nullptr, 10);
     else if (a == "--seed" && has_value) o.seed = static_cast<uint32_t>(std::strtoul(argv[++i], nullptr, 10));
     else if (a == "--csv" && has_value) o.csv = argv[++i];
+    else if (a == "--peers" && has_value) o.peers_csv = argv[++i];
+    else if (a == "--control-bits" && has_value) o.control_bits = std::atoi(argv[++i]);
     else if (a == "--skip-absent") o.skip_absent = true;
     else if (a == "--fixed-control") o.fixed_control = true;
     else if (a == "--qp" && has_value) {
@@ -146,6 +156,7 @@ bool run_dbss(const std::string& shape, const dbss::PointCloud& points, const Tr
   dbss::EncodeOptions eo;
   eo.levels = o.levels;
   eo.choose_control = !o.fixed_control;
+  eo.control_bits = o.control_bits;
   const auto t0 = Clock::now();
   auto e = dbss::encode_points(points, eo);
   const double seconds = since(t0);
@@ -155,6 +166,16 @@ bool run_dbss(const std::string& shape, const dbss::PointCloud& points, const Tr
   std::fprintf(stderr, "rd_bench: %s: dbss %.1f s: control %.1f, draco %.2f, levels %.1f, choice %.1f, check %.1f; control: %s\n",
                shape.c_str(), seconds, enc.seconds.control, enc.seconds.draco, enc.seconds.levels, enc.seconds.choice,
                enc.seconds.check, enc.control_choice.empty() ? "the default (not chosen)" : enc.control_choice.c_str());
+  // Where the bytes went: the control mesh (Draco, its position bits) and
+  // each level's bits per displacement (LEVL data over its odd vertices).
+  std::string per_level;
+  for (const dbss::LevelStats& st : enc.levels.stats) {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, " L%u %.2f", st.level, st.odd ? 8.0 * static_cast<double>(st.bytes) / static_cast<double>(st.odd) : 0.0);
+    per_level += buf;
+  }
+  std::fprintf(stderr, "rd_bench: %s: control %zu bytes (%d-bit positions, %zu faces); bits per displacement:%s\n", shape.c_str(),
+               enc.contents.control_mesh.size(), enc.control_bits, enc.control.triangle_count(), per_level.c_str());
   dbss::ProgressiveDecoder decoder;
   uint64_t fed = 0;
   for (uint32_t l = 0; l <= o.levels; ++l) {
@@ -193,6 +214,25 @@ bool run_peer(const std::string& shape, const std::string& method, const dbss::b
                     m.triangle_count(), seconds});
   }
   return true;
+}
+
+// The peers' rows of `shape` in an earlier run's CSV (write_csv's columns);
+// empty when the file or the shape is not there.
+std::vector<RdRow> cached_peers(const std::string& path, const std::string& shape) {
+  std::vector<RdRow> rows;
+  std::FILE* f = std::fopen(path.c_str(), "r");
+  if (f == nullptr) return rows;
+  char line[512];
+  while (std::fgets(line, sizeof line, f) != nullptr) {
+    std::string text(line);
+    while (!text.empty() && (text.back() == '\n' || text.back() == '\r')) text.pop_back();
+    const std::vector<std::string> c = split(text);
+    if (c.size() != 8 || c[0] != shape || c[1] == "dbss" || c[1] == "method") continue;
+    rows.push_back({c[0], c[1], c[2], std::strtoull(c[3].c_str(), nullptr, 10), std::atof(c[4].c_str()),
+                    std::strtoull(c[5].c_str(), nullptr, 10), std::strtoull(c[6].c_str(), nullptr, 10), std::atof(c[7].c_str())});
+  }
+  std::fclose(f);
+  return rows;
 }
 
 }  // namespace
@@ -234,8 +274,14 @@ int main(int argc, char** argv) {
 
     std::vector<RdRow> rows;
     if (o.dbss && !run_dbss(shape, points, truth, o, rows)) return 1;
-    if (o.afront && !run_peer(shape, "advancing front", dbss::bench::advancing_front(xyz), truth, o, rows)) return 1;
-    if (o.poisson && !run_peer(shape, "Poisson", dbss::bench::poisson(xyz), truth, o, rows)) return 1;
+    const std::vector<RdRow> cached = o.peers_csv.empty() ? std::vector<RdRow>{} : cached_peers(o.peers_csv, shape);
+    if (!cached.empty()) {
+      rows.insert(rows.end(), cached.begin(), cached.end());
+      std::fprintf(stderr, "rd_bench: %s: %zu peer rows from %s\n", shape.c_str(), cached.size(), o.peers_csv.c_str());
+    } else {
+      if (o.afront && !run_peer(shape, "advancing front", dbss::bench::advancing_front(xyz), truth, o, rows)) return 1;
+      if (o.poisson && !run_peer(shape, "Poisson", dbss::bench::poisson(xyz), truth, o, rows)) return 1;
+    }
 
     char heading[256];
     std::snprintf(heading, sizeof heading, "### %s (%zu triangles, %zu points)", shape.c_str(), truth.mesh.triangle_count(),

@@ -31,6 +31,27 @@ double two_sided(const TriangleMesh& level, const test::Shape& s, const std::vec
   return 0.5 * (to_truth / static_cast<double>(on_level.size() / 3) + to_level / static_cast<double>(truth_points.size() / 3));
 }
 
+// A shape's scan of `points` points and, from another seed, 20,000 points of
+// its true surface for two_sided.
+struct Scan {
+  PointCloud points;
+  std::vector<double> truth;
+};
+
+Scan scan_of(const test::Shape& s, size_t points) {
+  Scan scan;
+  scan.points = test::sample_sdf(s.sdf, s.lo, s.hi, points);
+  const PointCloud truth = test::sample_sdf(s.sdf, s.lo, s.hi, 20000, 99);
+  scan.truth.assign(truth.xyz.begin(), truth.xyz.end());
+  return scan;
+}
+
+// Level l of `e` against the true surface, over the encoding's diagonal.
+double level_error(const Encoding& e, uint32_t l, const test::Shape& s, const std::vector<double>& truth_points) {
+  const TriangleMesh level{e.levels.positions[l], e.levels.triangles[l]};
+  return two_sided(level, s, truth_points) / e.diagonal;
+}
+
 }  // namespace
 
 TEST_CASE("levels against the true surface: no level farther than the one before, and levels past the points cheap") {
@@ -43,9 +64,8 @@ TEST_CASE("levels against the true surface: no level farther than the one before
     const std::string name = s.name;
     if (name != "torus" && name != "double torus") continue;
     INFO(name);
-    const PointCloud pc = test::sample_sdf(s.sdf, s.lo, s.hi, 3000);
-    const PointCloud truth = test::sample_sdf(s.sdf, s.lo, s.hi, 20000, 99);
-    const std::vector<double> truth_points(truth.xyz.begin(), truth.xyz.end());
+    const Scan scan = scan_of(s, 3000);
+    const PointCloud& pc = scan.points;
     EncodeOptions o;
     o.levels = 5;
     auto e = encode_points(pc, o);
@@ -53,9 +73,8 @@ TEST_CASE("levels against the true surface: no level farther than the one before
     const Encoding& enc = e.value();
     double previous = 0;
     for (uint32_t l = 0; l <= 5; ++l) {
-      const TriangleMesh level{enc.levels.positions[l], enc.levels.triangles[l]};
-      const double error = two_sided(level, s, truth_points) / enc.diagonal;
-      INFO("level " << l << ": " << level.vertex_count() << " vertices, error " << error << " of the diagonal, previous "
+      const double error = level_error(enc, l, s, scan.truth);
+      INFO("level " << l << ": " << enc.levels.positions[l].size() / 3 << " vertices, error " << error << " of the diagonal, previous "
                     << previous << ", prefix " << prefix_bytes(enc, l) << " bytes");
       if (l > 0) CHECK(error <= 1.02 * previous);
       // Once the level before has more vertices than points, this one costs
@@ -80,9 +99,8 @@ TEST_CASE("the control mesh chosen by rate-distortion is never worse against the
     const std::string name = s.name;
     if (name != "torus" && name != "double torus") continue;
     INFO(name);
-    const PointCloud pc = test::sample_sdf(s.sdf, s.lo, s.hi, 3000);
-    const PointCloud truth = test::sample_sdf(s.sdf, s.lo, s.hi, 20000, 99);
-    const std::vector<double> truth_points(truth.xyz.begin(), truth.xyz.end());
+    const Scan scan = scan_of(s, 3000);
+    const PointCloud& pc = scan.points;
     EncodeOptions o;
     o.levels = kAutoLevels;
     o.choose_control = false;
@@ -107,10 +125,8 @@ TEST_CASE("the control mesh chosen by rate-distortion is never worse against the
     }
     const auto curve = [&](const Encoding& e) {
       std::vector<std::pair<double, double>> out;  // (bytes, error)
-      for (uint32_t l = 0; l <= e.level_count; ++l) {
-        const TriangleMesh level{e.levels.positions[l], e.levels.triangles[l]};
-        out.emplace_back(static_cast<double>(prefix_bytes(e, l)), two_sided(level, s, truth_points) / e.diagonal);
-      }
+      for (uint32_t l = 0; l <= e.level_count; ++l)
+        out.emplace_back(static_cast<double>(prefix_bytes(e, l)), level_error(e, l, s, scan.truth));
       return out;
     };
     const auto cf = curve(f), cc = curve(c);
@@ -146,9 +162,8 @@ TEST_CASE("a noisy cloud: no level farther from the true surface than the one be
   // and the fall to level 3 must hold.
   const test::Shape s = test::genus_shapes()[1];  // torus
   INFO(s.name);
-  PointCloud pc = test::sample_sdf(s.sdf, s.lo, s.hi, 8000);
-  const PointCloud truth = test::sample_sdf(s.sdf, s.lo, s.hi, 20000, 99);
-  const std::vector<double> truth_points(truth.xyz.begin(), truth.xyz.end());
+  Scan scan = scan_of(s, 8000);
+  PointCloud& pc = scan.points;
   double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
   for (size_t i = 0; i < pc.xyz.size(); ++i) lo[i % 3] = std::min(lo[i % 3], double{pc.xyz[i]}), hi[i % 3] = std::max(hi[i % 3], double{pc.xyz[i]});
   const double diagonal = std::sqrt(std::pow(hi[0] - lo[0], 2) + std::pow(hi[1] - lo[1], 2) + std::pow(hi[2] - lo[2], 2));
@@ -162,9 +177,8 @@ TEST_CASE("a noisy cloud: no level farther from the true surface than the one be
   const Encoding& enc = e.value();
   double previous = 0;
   for (uint32_t l = 0; l <= 5; ++l) {
-    const TriangleMesh level{enc.levels.positions[l], enc.levels.triangles[l]};
-    const double error = two_sided(level, s, truth_points) / enc.diagonal;
-    INFO("level " << l << ": " << level.vertex_count() << " vertices, error " << error << " of the diagonal, previous "
+    const double error = level_error(enc, l, s, scan.truth);
+    INFO("level " << l << ": " << enc.levels.positions[l].size() / 3 << " vertices, error " << error << " of the diagonal, previous "
                   << previous);
     if (l > 0 && l <= 3) CHECK(error <= 0.95 * previous);
     if (l > 3) CHECK(error <= 1.05 * previous);
