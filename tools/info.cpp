@@ -115,6 +115,7 @@ int run_info(const std::vector<std::string_view>& args) {
                       !r.has_control() ? "(missing)" : control.ok() ? "" : "(bad)");
         } else if (l <= r.levels_ready()) {
           const auto& lv = r.level(l);
+          // (bytes include the level's BDRY chunk: its cost per odd vertex)
           const double bits = lv.q.empty() ? 0.0 : 8.0 * static_cast<double>(level_bytes[l - 1]) / lv.q.size();
           std::printf(" %12zu %12.6g %-11s %10llu %8.3f\n", lv.q.size(), lv.step, format::coding_name(lv.coding),
                       static_cast<unsigned long long>(level_bytes[l - 1]), bits);

@@ -69,8 +69,16 @@ InfoReport inspect_bytes(std::span<const uint8_t> bytes, bool hashes, const form
       rep.rows.push_back({e.type.str(), e.offset, e.length, i < r.chunks_verified() && !bad_mesh});
     }
   }
-  for (const auto& e : r.toc())
-    if (e.type == format::kLevl) rep.level_bytes.push_back(e.length);
+  // A level's BDRY chunk (format 1.3) comes just before its LEVL and is
+  // part of what the level costs.
+  uint64_t boundary = 0;
+  for (const auto& e : r.toc()) {
+    if (e.type == format::kBdry) boundary += e.length;
+    if (e.type != format::kLevl) continue;
+    rep.level_bytes.push_back(e.length + boundary);
+    rep.boundary_bytes.push_back(boundary);
+    boundary = 0;
+  }
   return rep;
 }
 
@@ -108,6 +116,10 @@ std::string info_json(const InfoReport& rep, const std::optional<std::string>& p
       const auto& lv = r.level(l);
       appendf(o, ", \"odd\": %zu, \"step\": %.9g, \"coding\": \"%s\", \"bytes\": %llu", lv.q.size(), lv.step,
               format::coding_name(lv.coding), static_cast<unsigned long long>(rep.level_bytes[l - 1]));
+      if (!lv.boundary.empty())
+        appendf(o, ", \"boundary_values\": %zu, \"boundary_step\": %.9g, \"boundary_coding\": \"%s\", \"boundary_bytes\": %llu",
+                lv.boundary.q.size(), lv.boundary.step, format::coding_name(lv.boundary.coding),
+                static_cast<unsigned long long>(rep.boundary_bytes[l - 1]));
     }
     if (l < rep.level_hash.size()) appendf(o, ", \"fnv1a64\": \"%s\"", fnv1a64_hex(rep.level_hash[l]).c_str());
     const bool ready = l == 0 ? r.has_control() && rep.control.ok() : rep.control.ok() && l <= r.levels_ready();

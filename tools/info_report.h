@@ -29,7 +29,8 @@ struct InfoReport {
   bool valid = false;                // complete and the control mesh decodes
   Status first_error;
   std::vector<InfoChunkRow> rows;    // HEAD, INDX, then the table of contents
-  std::vector<uint64_t> level_bytes; // compressed bytes per level, from the table of contents
+  std::vector<uint64_t> level_bytes; // compressed bytes per level (LEVL and its BDRY), from the table of contents
+  std::vector<uint64_t> boundary_bytes; // of them, the level's BDRY chunk (format 1.3; 0 without one)
   const format::Reader& reader() const noexcept { return decoder.reader(); }
 };
 

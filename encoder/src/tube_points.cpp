@@ -31,7 +31,15 @@ constexpr double kClearance = 0.75;
 // torus's tubes of 0.3), and rings of that radius were fatter than the
 // tube they stand for: the rebuilt surface met the next torus (two
 // components, or genus 5) and the join was refused.
-double ring_radius(const PointRim& r) { return r.tube_radius > 0 ? std::min(r.radius, r.tube_radius) : r.radius; }
+// Only a rim that cuts across a tube's wall has a tube direction: round a
+// hole in a wall (PointRim::wall near 1) the normals all lie along the
+// axis, their least spread is noise, and tube_radius comes out about 0.64
+// of the mean radius; such a rim keeps its mean radius.  Tube ends on the
+// hole sweep have walls of 0.2-0.6.
+constexpr double kMaxTubeWall = 0.8;
+double ring_radius(const PointRim& r) {
+  return r.tube_radius > 0 && r.wall < kMaxTubeWall ? std::min(r.radius, r.tube_radius) : r.radius;
+}
 
 // The Hermite curve of hole_bridge.cpp and point_rims.cpp's join test, from
 // a's centre to b's: it leaves a against a's axis and enters b along b's
