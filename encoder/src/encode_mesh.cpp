@@ -33,8 +33,9 @@ std::vector<uint64_t> level_vertex_counts(uint64_t vertices, uint64_t edges, uin
 }
 
 uint32_t mesh_control_faces(uint32_t input_faces, int64_t genus, uint64_t boundary_loops) {
-  const uint64_t extra = uint64_t{kControlFacesPerLoop} * boundary_loops;
-  return static_cast<uint32_t>(std::min<uint64_t>(default_control_faces(input_faces, genus) + extra, UINT32_MAX - 1));
+  const uint64_t loops = uint64_t{kControlFacesPerLoop} * boundary_loops;
+  return static_cast<uint32_t>(std::min<uint64_t>(std::max<uint64_t>(default_control_faces(input_faces, genus), loops),
+                                                  UINT32_MAX - 1)) & ~1u;
 }
 
 Result<MeshEncoding> encode_mesh(const TriangleMesh& mesh, const EncodeOptions& o, const MeshEncodeOptions& mo) {

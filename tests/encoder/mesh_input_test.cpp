@@ -406,8 +406,8 @@ TriangleMesh perforated_sphere(uint32_t rings, uint32_t sides, uint32_t ring_gap
 // its 341 vertices on the 106 holes), its triangles spanned part of every
 // hole, and the odd vertices born over a hole stay there (a missed cast
 // moves them along the normal only): elephant-with-holes floored at a
-// level-to-input error of 1e-3 of the diagonal.  Budget per loop
-// (mesh_control_faces): level 3 within a bound the old budget missed
+// level-to-input error of 1e-3 of the diagonal.  With a budget per loop
+// (mesh_control_faces) level 3 keeps within a bound the old budget missed
 // by 1.5x: 1.08e-4 before, 4.5e-5 after (control triangles 326 -> 896).
 TEST_CASE("mesh input: a sphere with many small holes keeps them and has no error floor", "[mesh_input]") {
   const TriangleMesh input = perforated_sphere(36, 48, 4, 6);
