@@ -314,7 +314,8 @@ int run_mesh(const std::string& path, const Args& args, uint32_t holes = 0) {
 
   // The control mesh's simplifier: dbss's QEM against meshoptimizer's.
   const uint32_t target = args.control_faces ? args.control_faces
-                                             : default_control_faces(static_cast<uint32_t>(input.triangle_count()), info.genus);
+                                             : mesh_control_faces(static_cast<uint32_t>(input.triangle_count()), info.genus,
+                                                                  info.boundary_loops);
   if (!args.quick) {
   std::printf("\ncontrol mesh simplifier, target %u triangles:\n\n", target);
   std::printf("| simplifier | ms | triangles | topology | error |\n|---|---|---|---|---|\n");

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 
 #include "dbss/decoder/control_mesh.h"
@@ -31,6 +32,12 @@ std::vector<uint64_t> level_vertex_counts(uint64_t vertices, uint64_t edges, uin
   return r;
 }
 
+uint32_t mesh_control_faces(uint32_t input_faces, int64_t genus, uint64_t boundary_loops) {
+  const uint64_t loops = uint64_t{kControlFacesPerLoop} * boundary_loops;
+  return static_cast<uint32_t>(std::min<uint64_t>(std::max<uint64_t>(default_control_faces(input_faces, genus), loops),
+                                                  UINT32_MAX - 1)) & ~1u;
+}
+
 Result<MeshEncoding> encode_mesh(const TriangleMesh& mesh, const EncodeOptions& o, const MeshEncodeOptions& mo) {
   if (o.control_bits != 0 && (o.control_bits < 8 || o.control_bits > 30))
     return Status(ErrorCode::invalid_argument, "control bits must be 8..30, or 0 to derive them from the step");
@@ -55,7 +62,8 @@ Result<MeshEncoding> encode_mesh(const TriangleMesh& mesh, const EncodeOptions& 
   if (o.on_progress) o.on_progress("simplifying");
   const uint32_t target = o.control.control_faces
                               ? o.control.control_faces
-                              : default_control_faces(static_cast<uint32_t>(in.triangle_count()), me.input_info.genus);
+                              : mesh_control_faces(static_cast<uint32_t>(in.triangle_count()), me.input_info.genus,
+                                                   me.input_info.boundary_loops);
   auto control = control_mesh_from_mesh(in, surface, target, &me.control_stats);
   if (!control.ok()) return control.status();
   e.stages.control = std::move(control).value();
