@@ -132,10 +132,11 @@ Result<MeshEncoding> encode_mesh(const TriangleMesh& mesh, const EncodeOptions& 
         for (int k = 0; k < 3; ++k) rim_tangent[3 * size_t{edge} + k] = d[k] / len;
     }
   };
-  // A boundary odd vertex aims at the input's boundary curve where it
-  // crosses the plane across its edge: with BDRY values it can reach that
-  // point (along its normal and across the boundary); without, its normal
-  // offset is still the one to that point.  (Closed input: unchanged.)
+  // With BDRY values a boundary odd vertex aims at the input's boundary
+  // curve where it crosses the plane across its edge, and reaches it along
+  // its normal and across the boundary; without them (a 1.2 file) it takes
+  // the normal offset to the nearest boundary point, as before format 1.3.
+  // (Closed input: unchanged.)
   sampler.sample = [&](uint32_t odd, const double p[3], const double n[3], double half_length) {
     const bool on_rim = odd < rim.size() && rim[odd];
     const double* tangent = on_rim && mo.boundary_values ? &rim_tangent[3 * size_t{odd}] : nullptr;

@@ -87,7 +87,9 @@ Result<EncodedLevels> encode_levels(const TriangleMesh& control, const PointInde
     sides = {normals.get(), std::cos(30 * 3.14159265358979323846 / 180), o.wedge};
     if (o.wedge && o.wedge_gate) {
       *lines = CreaseLines(control, o.creases, points, kWedgeSlack, kWedgeNeighbourhood);
-      sides.lines = lines.get();
+      // (An empty set, from tags that do not fit the mesh, would gate the
+      // wedge off everywhere; PointSides::lines null means no gate.)
+      if (!lines->empty()) sides.lines = lines.get();
     }
   }
   // On a noisy cloud the fit may widen (surface_fit.h); a clean one keeps
@@ -185,7 +187,7 @@ Result<EncodedLevels> encode_levels(const TriangleMesh& control, const LevelSamp
 
     st.boundary_odd = bq.size();
     for (int32_t v : bq) st.boundary_moved += v != 0;
-    st.clamped += boundary_clamped;
+    st.boundary_clamped = boundary_clamped;  // (apart: clamped counts odd vertices)
     if (st.boundary_moved) {
       // The smallest coding, the older ones on a tie (as choose_coding).
       level.boundary.step = step;

@@ -42,8 +42,9 @@ struct LevelStats {
   double mean_abs_displacement = 0;
   size_t bytes = 0;  // LEVL chunk data
   // Format 1.3: boundary odd vertices, those with a non-zero in-surface
-  // value, and the BDRY chunk's data bytes (0 when the level has none).
-  size_t boundary_odd = 0, boundary_moved = 0, boundary_bytes = 0;
+  // value, those whose in-surface value was clamped, and the BDRY chunk's
+  // data bytes (0 when the level has none).
+  size_t boundary_odd = 0, boundary_moved = 0, boundary_clamped = 0, boundary_bytes = 0;
   format::DisplacementCoding coding = format::DisplacementCoding::byte_planes;
 };
 
