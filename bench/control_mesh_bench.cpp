@@ -11,6 +11,7 @@
 // core's work) next to the wall-clock stage times.
 //
 // usage: control_mesh_bench [--no-shapes] [--no-peers] [--hash] [POINT_FILE...]
+//        control_mesh_bench --family [--only NAME]  (genus>0 shapes, 3k-8k points, 4 seeds: right/wrong)
 // (--no-peers: neither OpenMesh nor CGAL, for profiling our stages alone)
 #include <chrono>
 #include <ctime>
