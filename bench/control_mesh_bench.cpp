@@ -11,12 +11,14 @@
 // core's work) next to the wall-clock stage times.
 //
 // usage: control_mesh_bench [--no-shapes] [--no-peers] [--hash] [POINT_FILE...]
+//        control_mesh_bench --family [--only NAME]  (genus>0 shapes, 3k-8k points, 4 seeds: right/wrong)
 // (--no-peers: neither OpenMesh nor CGAL, for profiling our stages alone)
 #include <chrono>
 #include <ctime>
 #include <cstdio>
 #include <filesystem>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "../tests/sampled_shapes.h"
@@ -152,15 +154,64 @@ dbss::PointCloud sampled_mesh(const std::string& path, size_t n, uint32_t seed) 
 }
 }  // namespace
 
+// --family: shapes of genus > 0 like the sweep's (tori side by side, at
+// other overlaps and tube radii) sampled at 3k-8k points with several
+// seeds; one line each and a count of right and wrong topologies.
+int run_family(const std::string& only) {
+  using dbss::test::torus_sdf;
+  struct Fam {
+    std::string name;
+    dbss::test::Sdf sdf;
+    double lo, hi;
+    int genus;
+  };
+  std::vector<Fam> fams;
+  for (const auto& s : dbss::test::genus_shapes())
+    if (s.genus > 0) fams.push_back({s.name, s.sdf, s.lo, s.hi, static_cast<int>(s.genus)});
+  // Rows of n tori of tube radius r, centres `gap` apart (under 2: they overlap).
+  for (const auto& [n, gap, r] : std::vector<std::tuple<int, double, double>>{{2, 1.5, 0.3}, {3, 1.7, 0.25}, {3, 1.5, 0.3}, {4, 1.6, 0.3}, {2, 1.7, 0.2}}) {
+    const double half = 0.5 * gap * (n - 1);
+    fams.push_back({std::to_string(n) + "x torus gap " + std::to_string(gap).substr(0, 3) + " r " + std::to_string(r).substr(0, 4),
+                    [n, gap, r, half](double x, double y, double z) {
+                      double d = 1e300;
+                      for (int i = 0; i < n; ++i) d = std::min(d, torus_sdf(x, y, z, -half + gap * i, 0, 1, r));
+                      return d;
+                    },
+                    -half - 1.2 - r, half + 1.2 + r, n});
+  }
+  int right = 0, wrong = 0;
+  for (const auto& f : fams) {
+    if (!only.empty() && f.name.find(only) == std::string::npos) continue;
+    for (size_t n : {3000, 5000, 8000})
+      for (uint32_t seed : {1u, 2u, 3u, 4u}) {
+        const auto pc = dbss::test::sample_sdf(f.sdf, f.lo, f.hi, n, seed);
+        auto r = dbss::build_control_mesh(pc);
+        const bool ok = r.ok() && dbss::mesh_info(r.value().control).components == 1 &&
+                        dbss::mesh_info(r.value().control).genus == f.genus;
+        (ok ? right : wrong)++;
+        std::printf("%-26s %5zu seed %u grid %3d genus %lld want %d %s\n", f.name.c_str(), n, seed,
+                    r.ok() ? r.value().carving.grid : 0, r.ok() ? static_cast<long long>(dbss::mesh_info(r.value().control).genus) : -1LL,
+                    f.genus, ok ? "ok" : "WRONG");
+      }
+  }
+  std::printf("family: %d right, %d wrong\n", right, wrong);
+  return 0;
+}
+
 int main(int argc, char** argv) {
   std::vector<std::string> files;
   bool shapes = true;
+  bool family = false;
+  std::string only;
   for (int i = 1; i < argc; ++i) {
     if (std::string(argv[i]) == "--no-shapes") shapes = false;
     else if (std::string(argv[i]) == "--no-peers") g_peers = false;
     else if (std::string(argv[i]) == "--hash") g_hash = true;
+    else if (std::string(argv[i]) == "--family") family = true;
+    else if (std::string(argv[i]) == "--only" && i + 1 < argc) only = argv[++i];
     else files.push_back(argv[i]);
   }
+  if (family) return run_family(only);
   if (files.empty() && shapes) {
     for (const char* f : {"test-data/data/meshes/bunny00.off", "test-data/data/points_3/kitten.xyz",
                           "test-data/data/meshes/fandisk.off"})

@@ -29,6 +29,7 @@ struct CarvingStats {
   size_t occupied = 0;          // cells holding points
   size_t solid = 0;             // cells left after carving
   size_t repaired = 0;          // air cells filled to remove edge/vertex-only contacts
+  double shift = 0;             // the cells' offset, in cells along each axis (0 or the search's 0.5)
 };
 
 // Carves a grid of `grid` cubic cells along the longest side of the points'
@@ -37,8 +38,10 @@ struct CarvingStats {
 // cannot leak through gaps of up to two cells in the sampling.  Afterwards the solid is made well-composed: wherever solid
 // cells would meet only along an edge or at a corner (which makes the shell
 // non-manifold), one of the air cells there is filled, and the carving is
-// redone so no enclosed air remains.  grid in 2..1024.
-CellGrid carve(const PointCloud& points, int grid, CarvingStats* stats = nullptr);
+// redone so no enclosed air remains.  grid in 2..1024.  shift (0 <= shift <
+// 1) moves the cells by that share of a cell along every axis: the same
+// grid falling differently on the points.
+CellGrid carve(const PointCloud& points, int grid, CarvingStats* stats = nullptr, double shift = 0);
 
 // What a carving says about the solid, to tell a closed carving from a leak.
 struct CarvingShape {
@@ -50,10 +53,12 @@ CarvingShape carving_shape(const CellGrid& g);
 class PointIndex;
 
 // The finest grid whose carving does not leak into the inside, and its
-// carving as carve() makes it (the search carved it already): grids are
-// stepped finer from cells of two point spacings until the enclosed volume
-// collapses, the solid's topology tears or it needs patching (see
-// cell_carving.cpp); between 8 and max_grid.  `index` must be built on
+// carving as carve() makes it at stats.grid and stats.shift (the search
+// carved it already): grids are stepped finer from cells of two point
+// spacings until the enclosed volume collapses, the solid's topology tears
+// or it needs patching; a grid that shows handles the choice before it did
+// not is also carved half a cell moved, and the carving with fewer handles
+// kept (see cell_carving.cpp); between 8 and max_grid.  `index` must be built on
 // `points`.
 struct CarvingChoice {
   CellGrid cells;
