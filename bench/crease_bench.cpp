@@ -13,6 +13,8 @@
 //   --against-no-collapse: the 'off' columns are creases on without the alignment's collapses
 //     (CreaseOptions::collapse), the 'on' columns with them (with --collapse): before/after in one run
 //   --against-no-relax: likewise without the flat faces' relaxation (CreaseOptions::relax)
+//   --against-relax-beside: 'off' = the defaults, 'on' = with the flat vertices beside a line relaxed too
+//     (CreaseOptions::relax_beside_lines, off by default)
 //   --against-no-wedge: likewise without the wedge sampling next to creases (CreaseOptions::wedge)
 //   --against-no-wedge-gate: likewise with the wedge anywhere, not only near tagged edges (CreaseOptions::wedge_gate)
 //   --fixed-control: the default face count, not chosen by rate-distortion (EncodeOptions::choose_control)
@@ -98,7 +100,7 @@ int main(int argc, char** argv) {
   uint32_t levels = 4;
   double angle = 30;
   std::vector<std::string> shapes;
-  bool skip_absent = false, shaping = true, split = false, against_no_collapse = false, against_no_wedge = false, against_no_relax = false, against_no_gate = false, fixed_control = false, collapse = false;
+  bool skip_absent = false, shaping = true, split = false, against_no_collapse = false, against_no_wedge = false, against_no_relax = false, against_beside = false, against_no_gate = false, fixed_control = false, collapse = false;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--points" && i + 1 < argc) points = std::strtoull(argv[++i], nullptr, 10);
@@ -112,6 +114,7 @@ int main(int argc, char** argv) {
     else if (a == "--fixed-control") fixed_control = true;
     else if (a == "--against-no-wedge") against_no_wedge = true;
     else if (a == "--against-no-relax") against_no_relax = true;
+    else if (a == "--against-relax-beside") against_beside = true;
     else if (a == "--against-no-wedge-gate") against_no_gate = true;
     else if (a == "--collapse") collapse = true;
     else if (!a.empty() && a[0] == '-') return std::fprintf(stderr, "crease_bench: unknown option %s\n", a.c_str()), 1;
@@ -150,7 +153,7 @@ int main(int argc, char** argv) {
     for (int on = 0; on < 2; ++on) {
       dbss::EncodeOptions eo;
       eo.levels = levels;
-      const bool against = against_no_collapse || against_no_wedge || against_no_relax || against_no_gate;
+      const bool against = against_no_collapse || against_no_wedge || against_no_relax || against_beside || against_no_gate;
       eo.creases.angle_degrees = on || against ? angle : 0;
       // 'on': the defaults (with --collapse, collapses too); 'off' with an
       // --against-no-X: the same less X.
@@ -158,6 +161,7 @@ int main(int argc, char** argv) {
       eo.creases.collapse = (defaults.collapse || collapse) && (on || !against_no_collapse);
       eo.creases.wedge = defaults.wedge && (on || !against_no_wedge);
       eo.creases.relax = defaults.relax && (on || !against_no_relax);
+      eo.creases.relax_beside_lines = defaults.relax_beside_lines || (on && against_beside);
       eo.creases.wedge_gate = defaults.wedge_gate && (on || !against_no_gate);
       eo.control.shape.enabled = shaping;
       eo.creases.split = split;
@@ -214,9 +218,9 @@ int main(int argc, char** argv) {
     }
     const Run& r = runs[1];
     std::printf("### %s\n", shape.c_str());
-    for (int on = against_no_collapse || against_no_wedge || against_no_relax || against_no_gate ? 0 : 1; on < 2; ++on) {
+    for (int on = against_no_collapse || against_no_wedge || against_no_relax || against_beside || against_no_gate ? 0 : 1; on < 2; ++on) {
       const dbss::CreaseStats& s = runs[on].stats;
-      if (against_no_collapse || against_no_wedge || against_no_relax || against_no_gate) std::printf("%s: ", on ? "after" : "before");
+      if (against_no_collapse || against_no_wedge || against_no_relax || against_beside || against_no_gate) std::printf("%s: ", on ? "after" : "before");
       std::printf("aligned: %zu vertices moved onto feature lines, %zu merged into a neighbour on one, %zu flat-face moves, %zu edges flipped and %zu split along "
                   "them, %zu chain edges; creases: %zu edges, %zu corners, %zu darts, feature length %.3f; tags %zu bytes\n",
                   s.aligned, s.align_collapses, s.align_relaxed, s.align_flips, s.align_splits, s.chain_edges, s.creases, s.corners, s.darts,

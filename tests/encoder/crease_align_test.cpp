@@ -204,3 +204,37 @@ TEST_CASE("sampling beside a cube's edge: the two sides' planes, not a fit that 
     CHECK(std::abs(got[1] - c.want) <= std::abs(got[0] - c.want) + 1e-4);
   }
 }
+
+TEST_CASE("a sampled cube: relaxing the flat vertices beside a line lowers level 1's error") {
+  // QEM leaves vertices beside a cube's edge with a few short edges towards
+  // it and a few long ones across the face; not moved onto the line, they
+  // were not relaxed, and the butterfly's extraordinary rule at them put odd
+  // vertices past the edge in the face's plane (crease_bench: 0.128 out).
+  const TriangleMesh truth = test::cube();
+  const PointCloud pc = sampled(truth, 40000);
+  const double diagonal = 2 * std::sqrt(3.0);
+  double mean[2] = {}, worst[2] = {};  // level 1's, over the diagonal
+  size_t relaxed[2] = {};
+  for (int on = 0; on < 2; ++on) {
+    EncodeOptions o;
+    o.levels = 1;
+    o.threads = 2;
+    o.creases.angle_degrees = 30;
+    o.creases.relax_beside_lines = on;
+    auto e = encode_points(pc, o);
+    REQUIRE(e.ok());
+    const Encoding& enc = e.value();
+    relaxed[on] = enc.creases.align_relaxed;
+    const TriangleMesh level{enc.levels.positions[1], enc.levels.triangles[1]};
+    const MeshDistance d = mesh_distance(level, truth, {40000, 1, 2});
+    mean[on] = d.mean() / diagonal, worst[on] = d.max() / diagonal;
+  }
+  INFO("level 1 beside-line relaxation off: " << mean[0] << " / " << worst[0] << " (" << relaxed[0] << " moves), on: " << mean[1]
+                                              << " / " << worst[1] << " (" << relaxed[1] << " moves)");
+  // When written: mean 2.44e-5 -> 1.77e-5, 274 -> 2252 moves.  The
+  // Hausdorff distance is not checked: with this seed it rose (2.52% ->
+  // 2.99%, one worst odd vertex elsewhere); with crease_bench's it fell
+  // 3.18% -> 1.12%.
+  CHECK(relaxed[1] > 4 * relaxed[0]);
+  CHECK(mean[1] < 0.85 * mean[0]);
+}
