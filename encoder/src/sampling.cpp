@@ -199,13 +199,15 @@ Sample sample_displacement(const PointIndex& index, const double pd[3], const do
     Cand anchor = cyl[0];
     for (const Cand& x : cyl)
       if (x.horizontal <= kAnchorReach * cyl[first - 1].horizontal && std::abs(x.vertical) < std::abs(anchor.vertical)) anchor = x;
-    const auto sheet_end = std::stable_partition(cyl.begin(), cyl.end(), [&](const Cand& c) {
+    const auto on_sheet = [&](const Cand& c) {
       return std::abs(c.vertical - anchor.vertical) <= kSteep * (c.horizontal + anchor.horizontal);
-    });
+    };
     // One sheet (every point of the cylinder on it, as on any smooth shape
     // whose curvature radius is over the cylinder's): the candidates and
-    // the fallback plane's points are the same as without the test.
-    const bool one_sheet = sheet_end == cyl.end();
+    // the fallback plane's points are the same as without the test.  (Tested
+    // first: stable_partition allocates a buffer, and this runs per sample.)
+    const bool one_sheet = std::all_of(cyl.begin(), cyl.end(), on_sheet);
+    const auto sheet_end = one_sheet ? cyl.end() : std::stable_partition(cyl.begin(), cyl.end(), on_sheet);
     const size_t sheet = static_cast<size_t>(sheet_end - cyl.begin());
     size_t m = first;
     if (!one_sheet) {
