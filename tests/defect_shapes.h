@@ -19,6 +19,8 @@
 #include <numeric>
 #include <queue>
 #include <random>
+#include <stdexcept>
+#include <string>
 #include <string_view>
 #include <utility>
 #include <vector>
@@ -256,6 +258,15 @@ inline const Shape* find_shape(const std::vector<Shape>& shapes, const char* nam
   for (const Shape& s : shapes)
     if (std::string_view(s.name) == name) return &s;
   return nullptr;
+}
+
+// The genus shape by name, built once (throws for an unknown name, which
+// fails the test that asked).
+inline const Shape& genus_shape(const char* name) {
+  static const std::vector<Shape> shapes = genus_shapes();
+  const Shape* s = find_shape(shapes, name);
+  if (s == nullptr) throw std::invalid_argument(std::string("no genus shape named ") + name);
+  return *s;
 }
 
 // Components, genus and boundary loops of a triangle mesh, open or closed

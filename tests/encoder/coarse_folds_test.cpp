@@ -25,12 +25,7 @@ namespace dt = dbss::test;
 
 namespace {
 
-const dt::Shape& shape(const char* name) {
-  static const std::vector<dt::Shape> shapes = dt::genus_shapes();
-  const dt::Shape* s = dt::find_shape(shapes, name);
-  REQUIRE(s != nullptr);
-  return *s;
-}
+const dt::Shape& shape(const char* name) { return dt::genus_shape(name); }
 
 // The hole sweep's complete scan of `name` at level 1, closed: its level-1
 // surface's mean distance to the points over their diagonal.

@@ -20,10 +20,7 @@ namespace dt = dbss::test;
 namespace {
 
 // The ring torus of the genus shapes (R = 1, r = 0.35, round the z axis).
-const dt::Shape& torus_shape() {
-  static const std::vector<dt::Shape> shapes = dt::genus_shapes();
-  return *dt::find_shape(shapes, "torus");
-}
+const dt::Shape& torus_shape() { return dt::genus_shape("torus"); }
 
 // The torus's points without a band right round its tube: the points whose
 // angle round the z axis is within `half_width` of +x.

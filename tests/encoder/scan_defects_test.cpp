@@ -34,12 +34,7 @@ constexpr uint32_t kLevels = 2;
 const char* const kShapes[] = {"sphere", "torus", "double torus"};
 const dt::Vec3 kHoleDirection = {0.3, 0.2, 1.0};
 
-const dt::Shape& shape(const char* name) {
-  static const std::vector<dt::Shape> shapes = dt::genus_shapes();
-  const dt::Shape* s = dt::find_shape(shapes, name);
-  REQUIRE(s != nullptr);
-  return *s;
-}
+const dt::Shape& shape(const char* name) { return dt::genus_shape(name); }
 
 const PointCloud& clean(const char* name) {
   static std::map<std::string, PointCloud> cache;

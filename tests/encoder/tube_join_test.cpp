@@ -21,12 +21,7 @@ namespace dt = dbss::test;
 
 namespace {
 
-const dt::Shape& shape(const char* name) {
-  static const std::vector<dt::Shape> shapes = dt::genus_shapes();
-  const dt::Shape* s = dt::find_shape(shapes, name);
-  REQUIRE(s != nullptr);
-  return *s;
-}
+const dt::Shape& shape(const char* name) { return dt::genus_shape(name); }
 
 // The torus's points (R = 1, r = 0.35 round the z axis) without a band right
 // round its tube: those within `half_width` of +x round the z axis.
