@@ -20,8 +20,9 @@ namespace {
 constexpr const char* kUsage =
     "usage: dbss <command> [options]\n"
     "\n"
-    "Displaced Butterfly Subdivision Surfaces codec. Reads format versions 1.0 to 1.2;\n"
-    "writes the lowest version a file needs (1.2 for context-coded levels).\n"
+    "Displaced Butterfly Subdivision Surfaces codec. Reads format versions 1.0 to 1.3;\n"
+    "writes the lowest version a file needs (1.2 for context-coded levels, 1.3 when a\n"
+    "mesh's boundary vertices move across the boundary).\n"
     "\n"
     "commands:\n"
     "  encode INPUT -o OUT.dbss   reconstruct a point cloud or mesh and write it\n"
