@@ -266,17 +266,17 @@ std::vector<std::pair<uint32_t, uint32_t>> crossings(const TriangleMesh& m, cons
       for (size_t j = i + 1; j < local.size() && !(local[j].box[0] > local[i].box[3]); ++j) {
         const Item& p = local[i];
         const Item& q = local[j];
-        bool apart = false;
-        for (int a = 1; a < 3; ++a) apart |= p.box[a] > q.box[3 + a] || q.box[a] > p.box[3 + a];
-        if (apart) continue;
-        // Test each pair once: in the bin holding the low corner of the
-        // overlap of the two bounds.
-        if (std::max(p.low[0], q.low[0]) != bx || std::max(p.low[1], q.low[1]) != by || std::max(p.low[2], q.low[2]) != bz)
-          continue;
-        bool shared = false;
-        for (int k = 0; k < 3; ++k)
-          for (int l = 0; l < 3; ++l) shared |= p.v[k] == q.v[l];
-        if (shared) continue;
+        // Bounds apart in y or z; the pair tested in another bin (each pair
+        // is tested once: in the bin holding the low corner of the overlap
+        // of the two bounds); a corner shared.  Some 1M pairs per search of
+        // the bunny 35k's shell get here and 2% go on: the three tests are
+        // combined without branches, so the one branch left is predictable
+        // (a branch per test, each taken at random, cost more than the
+        // tests).
+        bool skip = (p.box[1] > q.box[4]) | (q.box[1] > p.box[4]) | (p.box[2] > q.box[5]) | (q.box[2] > p.box[5]);
+        skip |= (std::max(p.low[0], q.low[0]) != bx) | (std::max(p.low[1], q.low[1]) != by) | (std::max(p.low[2], q.low[2]) != bz);
+        for (int k = 0; k < 3; ++k) skip |= (p.v[k] == q.v[0]) | (p.v[k] == q.v[1]) | (p.v[k] == q.v[2]);
+        if (skip) continue;
         V3 t[3], u[3];
         for (int k = 0; k < 3; ++k) t[k] = pos(m, p.v[k]), u[k] = pos(m, q.v[k]);
         if (triangles_intersect(t, u)) hits.push_back({std::min(p.f, q.f), std::max(p.f, q.f)});
