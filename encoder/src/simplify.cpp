@@ -359,10 +359,16 @@ class Simplifier {
     heap_[i] = e;
     where_[e.slot] = static_cast<uint32_t>(i);
   }
+  // A 4-ary heap: half the levels of a binary one, and a node's children
+  // side by side (64 bytes), so a sift misses the cache about half as often;
+  // a collapse updates some ten candidates in place.  Its order is a total
+  // one (the sequence numbers differ), so the pops are the same as a binary
+  // heap's.
+  static constexpr size_t kArity = 4;
   void sift_up(size_t i) {
     const HeapEntry e = heap_[i];
     while (i > 0) {
-      const size_t parent = (i - 1) / 2;
+      const size_t parent = (i - 1) / kArity;
       if (!before(e, heap_[parent])) break;
       place(i, heap_[parent]);
       i = parent;
@@ -373,9 +379,11 @@ class Simplifier {
     const HeapEntry e = heap_[i];
     const size_t n = heap_.size();
     for (;;) {
-      size_t child = 2 * i + 1;
-      if (child >= n) break;
-      if (child + 1 < n && before(heap_[child + 1], heap_[child])) ++child;
+      const size_t first = kArity * i + 1;
+      if (first >= n) break;
+      size_t child = first;
+      for (size_t c = first + 1; c < std::min(n, first + kArity); ++c)
+        if (before(heap_[c], heap_[child])) child = c;
       if (!before(heap_[child], e)) break;
       place(i, heap_[child]);
       i = child;
@@ -564,7 +572,7 @@ class Simplifier {
   std::vector<uint8_t> rim_;  // on an edge with one triangle
   std::vector<Quadric> q_;
   uint32_t faces_ = 0;
-  std::vector<HeapEntry> heap_;  // a binary min-heap in the order of before()
+  std::vector<HeapEntry> heap_;  // a 4-ary min-heap in the order of before()
   std::vector<Candidate> pool_;  // the candidates, by HeapEntry::slot
   std::vector<uint32_t> where_;  // per slot, its index in heap_
   std::vector<uint32_t> free_;   // slots of candidates dropped
