@@ -1,6 +1,8 @@
 #include "dbss/encoder/shell_mesh.h"
 
+#include <algorithm>
 #include <array>
+#include <cstddef>
 #include <span>
 #include <string>
 #include <vector>
@@ -12,11 +14,18 @@ constexpr uint32_t kNoVertex = 0xFFFFFFFFu;
 }  // namespace
 
 Result<TriangleMesh> triangulate_shell(const CellGrid& g, bool collapse_types, MeshInfo* info_out) {
-  const int nx = g.n[0] + 1, ny = g.n[1] + 1, nz = g.n[2] + 1;
-  std::vector<uint32_t> corner_id(size_t(nx) * ny * nz, kNoVertex);
+  const int nx = g.n[0] + 1, ny = g.n[1] + 1;
+  // Vertex ids of the grid's corners, two planes of them: the cells of
+  // layer k use the corners of planes k and k + 1 only, and the layers go
+  // in order (plane k's ids are kept in slot k % 2).  A full grid of ids was
+  // 4.7 MB on the bunny 35k's grid, allocated, cleared and faulted in for
+  // each shell.
+  const size_t plane = size_t(nx) * ny;
+  std::vector<uint32_t> corner_id(2 * plane, kNoVertex);
+  const auto id_at = [&](int i, int j, int k) -> uint32_t& { return corner_id[size_t(k & 1) * plane + size_t(j) * nx + i]; };
   std::vector<std::array<int, 3>> corner_of;  // grid corner of each vertex
   auto vertex = [&](int i, int j, int k) {
-    uint32_t& id = corner_id[(size_t(k) * ny + j) * nx + i];
+    uint32_t& id = id_at(i, j, k);
     if (id == kNoVertex) {
       id = static_cast<uint32_t>(corner_of.size());
       corner_of.push_back({i, j, k});
@@ -41,7 +50,9 @@ Result<TriangleMesh> triangulate_shell(const CellGrid& g, bool collapse_types, M
     while (parent[x] != x) x = parent[x] = parent[parent[x]];
     return x;
   };
-  for (int k = 1; k + 1 < g.n[2]; ++k)
+  for (int k = 1; k + 1 < g.n[2]; ++k) {
+    // Plane k + 1 takes the slot of plane k - 1, which no later cell uses.
+    std::fill_n(corner_id.begin() + std::ptrdiff_t((k + 1) & 1) * std::ptrdiff_t(plane), plane, kNoVertex);
     for (int j = 1; j + 1 < g.n[1]; ++j)
       for (int i = 1; i + 1 < g.n[0]; ++i) {
         if (!g.solid(i, j, k)) continue;
@@ -88,7 +99,7 @@ Result<TriangleMesh> triangulate_shell(const CellGrid& g, bool collapse_types, M
         size_t n_air_ids = 0;
         for (int cc = 0; cc < 8; ++cc) {
           const int p[3] = {i + (cc & 1), j + (cc >> 1 & 1), k + (cc >> 2)};
-          if (lone(p[0], p[1], p[2])) air_ids[n_air_ids++] = corner_id[(size_t(p[2]) * ny + p[1]) * nx + p[0]];
+          if (lone(p[0], p[1], p[2])) air_ids[n_air_ids++] = id_at(p[0], p[1], p[2]);
         }
         const std::span<const uint32_t> air(air_ids.data(), n_air_ids);
         const bool ribbon = n_solid == 2 && solid_faces[0] / 2 == solid_faces[1] / 2;
@@ -103,6 +114,7 @@ Result<TriangleMesh> triangulate_shell(const CellGrid& g, bool collapse_types, M
               if (quads[qi].v[n] == air[0]) quads[qi].avoid = n;
         }
       }
+  }
 
   // Vertices: one per union-find class, at the mean of its corners.
   TriangleMesh m;

@@ -16,6 +16,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <span>
 #include <string>
 
 namespace dbss {
@@ -94,15 +96,70 @@ struct HeapEntry {
   uint32_t slot;
 };
 
+// Each vertex's triangles, in the order they were added: up to 15 in one
+// 64-byte line with their count, more (rare: a vertex that swallowed many)
+// in a vector of their own.  A vector per vertex cost a second cache miss
+// per list read, and the link and fold checks of every collapse read the
+// lists of both ends (collapse_ok was memory bound on them).
+class FaceLists {
+ public:
+  explicit FaceLists(size_t n) : raw_(kLine * n + kLine - 1, 0), big_(n) {
+    // The first line boundary in raw_ (vector storage is only 16-aligned).
+    const auto addr = reinterpret_cast<uintptr_t>(raw_.data());
+    base_ = raw_.data() + ((kLine * sizeof(uint32_t) - addr % (kLine * sizeof(uint32_t))) % (kLine * sizeof(uint32_t))) / sizeof(uint32_t);
+  }
+  std::span<const uint32_t> operator[](uint32_t v) const {
+    const uint32_t* d = line(v);
+    return d[0] == kBig ? std::span<const uint32_t>(big_[v]) : std::span<const uint32_t>(d + 1, d[0]);
+  }
+  void push_back(uint32_t v, uint32_t f) {
+    uint32_t* d = line(v);
+    if (d[0] < kInline) {
+      d[1 + d[0]++] = f;
+      return;
+    }
+    if (d[0] == kInline) {
+      big_[v].assign(d + 1, d + 1 + kInline);
+      d[0] = kBig;
+    }
+    big_[v].push_back(f);
+  }
+  // Takes f out of v's list (where it is at most once), the rest in order.
+  void erase(uint32_t v, uint32_t f) {
+    uint32_t* d = line(v);
+    if (d[0] == kBig) {
+      big_[v].erase(std::remove(big_[v].begin(), big_[v].end(), f), big_[v].end());
+      return;
+    }
+    uint32_t* end = std::remove(d + 1, d + 1 + d[0], f);
+    d[0] = static_cast<uint32_t>(end - (d + 1));
+  }
+  void clear(uint32_t v) {
+    uint32_t* d = line(v);
+    if (d[0] == kBig) big_[v] = {};
+    d[0] = 0;
+  }
+
+ private:
+  static constexpr size_t kLine = 16;  // uint32_t per line: the count and kInline triangles
+  static constexpr uint32_t kInline = kLine - 1;
+  static constexpr uint32_t kBig = UINT32_MAX;  // count of a list kept in big_
+  uint32_t* line(uint32_t v) { return base_ + kLine * v; }
+  const uint32_t* line(uint32_t v) const { return base_ + kLine * v; }
+  std::vector<uint32_t> raw_;
+  uint32_t* base_ = nullptr;
+  std::vector<std::vector<uint32_t>> big_;
+};
+
 class Simplifier {
  public:
-  Simplifier(const TriangleMesh& m, double needle) : tris_(m.triangles), alive_(m.triangle_count(), 1), needle_(needle) {
+  Simplifier(const TriangleMesh& m, double needle)
+      : tris_(m.triangles), alive_(m.triangle_count(), 1), needle_(needle), faces_of_(m.vertex_count()) {
     const size_t n = m.vertex_count();
     pos_.resize(n);
     for (size_t v = 0; v < n; ++v) pos_[v] = Vec3(m.positions[3 * v], m.positions[3 * v + 1], m.positions[3 * v + 2]);
-    faces_of_.resize(n);
     for (uint32_t f = 0; f < m.triangle_count(); ++f)
-      for (int k = 0; k < 3; ++k) faces_of_[tris_[3 * f + k]].push_back(f);
+      for (int k = 0; k < 3; ++k) faces_of_.push_back(tris_[3 * f + k], f);
     head_.assign(n, kNone);
     slot_at_.assign(n, kNone);
     q_.resize(n);
@@ -302,10 +359,16 @@ class Simplifier {
     heap_[i] = e;
     where_[e.slot] = static_cast<uint32_t>(i);
   }
+  // A 4-ary heap: half the levels of a binary one, and a node's children
+  // side by side (64 bytes), so a sift misses the cache about half as often;
+  // a collapse updates some ten candidates in place.  Its order is a total
+  // one (the sequence numbers differ), so the pops are the same as a binary
+  // heap's.
+  static constexpr size_t kArity = 4;
   void sift_up(size_t i) {
     const HeapEntry e = heap_[i];
     while (i > 0) {
-      const size_t parent = (i - 1) / 2;
+      const size_t parent = (i - 1) / kArity;
       if (!before(e, heap_[parent])) break;
       place(i, heap_[parent]);
       i = parent;
@@ -316,9 +379,11 @@ class Simplifier {
     const HeapEntry e = heap_[i];
     const size_t n = heap_.size();
     for (;;) {
-      size_t child = 2 * i + 1;
-      if (child >= n) break;
-      if (child + 1 < n && before(heap_[child + 1], heap_[child])) ++child;
+      const size_t first = kArity * i + 1;
+      if (first >= n) break;
+      size_t child = first;
+      for (size_t c = first + 1; c < std::min(n, first + kArity); ++c)
+        if (before(heap_[c], heap_[child])) child = c;
       if (!before(heap_[child], e)) break;
       place(i, heap_[child]);
       i = child;
@@ -436,17 +501,15 @@ class Simplifier {
       if (has_u) {
         alive_[f] = 0;
         --faces_;
-        for (int k = 0; k < 3; ++k) {
-          auto& list = faces_of_[tris_[3 * f + k]];
-          if (tris_[3 * f + k] != v) list.erase(std::remove(list.begin(), list.end(), f), list.end());
-        }
+        for (int k = 0; k < 3; ++k)
+          if (tris_[3 * f + k] != v) faces_of_.erase(tris_[3 * f + k], f);
       } else {
         for (int k = 0; k < 3; ++k)
           if (tris_[3 * f + k] == v) tris_[3 * f + k] = u;
-        faces_of_[u].push_back(f);
+        faces_of_.push_back(u, f);
       }
     }
-    faces_of_[v].clear();
+    faces_of_.clear(v);
     rim_[u] |= rim_[v];
     pos_[u] = p;
     q_[u] += q_[v];
@@ -505,11 +568,11 @@ class Simplifier {
   std::vector<uint8_t> alive_;
   double needle_;  // SimplifyOptions::needle
   std::vector<Vec3> pos_;
-  std::vector<std::vector<uint32_t>> faces_of_;
+  FaceLists faces_of_;
   std::vector<uint8_t> rim_;  // on an edge with one triangle
   std::vector<Quadric> q_;
   uint32_t faces_ = 0;
-  std::vector<HeapEntry> heap_;  // a binary min-heap in the order of before()
+  std::vector<HeapEntry> heap_;  // a 4-ary min-heap in the order of before()
   std::vector<Candidate> pool_;  // the candidates, by HeapEntry::slot
   std::vector<uint32_t> where_;  // per slot, its index in heap_
   std::vector<uint32_t> free_;   // slots of candidates dropped
