@@ -244,7 +244,7 @@ int main(int argc, char** argv) {
   std::printf("%-28s %7s %4s %5s %5s %4s %7s %9s %7s %7s %4s %6s %7s %-7s %s\n", "input", "points", "comp", "genus",
               "loops", "topo", "clamp%", "p->s/diag", "p->s/sp", "enc s", "exit", "surf", "dropped", "verdict",
               o.hole_sweep ? "warnings  vs-complete joined" : "warnings");
-  int failures = 0, silent = 0, wrong_topology = 0, joined = 0, over_ratio = 0;
+  int failures = 0, silent = 0, wrong_topology = 0, wrong_unwarned = 0, joined = 0, over_ratio = 0;
   double worst_ratio = 0;
   // The hole sweep's complete scans, encoded once each: their finest level.
   std::vector<std::pair<std::string, dbss::TriangleMesh>> complete;
@@ -302,7 +302,7 @@ int main(int argc, char** argv) {
     const char* topo_mark = "?";
     if (!in.expect.empty()) {
       topo_mark = ("|" + in.expect + "|").find("|" + got + "|") != std::string::npos ? "=" : "X";
-      if (*topo_mark == 'X') ++wrong_topology;
+      if (*topo_mark == 'X') ++wrong_topology, wrong_unwarned += !warned;
     }
     std::string sweep;
     const auto source = std::find_if(complete_scans.begin(), complete_scans.end(),
@@ -362,8 +362,8 @@ int main(int argc, char** argv) {
   if (o.hole_sweep)
     std::printf("vs-complete: the input's points' mean distance to this surface over theirs to the complete scan's\n"
                 "(the error on the scanned part; bound 1.3).  joined: tubes the scan cut through joined across the gap.\n");
-  std::printf("%d failed, %d silently outside the bounds, %d with the wrong topology\n", failures, silent,
-              wrong_topology);
+  std::printf("%d failed, %d silently outside the bounds, %d with the wrong topology (%d of them without a warning)\n",
+              failures, silent, wrong_topology, wrong_unwarned);
   if (o.hole_sweep)
     std::printf("%d with a tube joined, %d over 1.3x the complete scan's error (worst %.2fx)\n", joined, over_ratio,
                 worst_ratio);

@@ -53,6 +53,12 @@ constexpr const char* kHelpTail =
     "Exit status: 0 written, 1 bad input or usage (or a warning under\n"
     "--strict), 2 internal error.\n";
 
+std::string fmt_shift(double shift) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%g", shift);
+  return b;
+}
+
 std::string help() { return std::string(kHelpHead) + kEncodeOptionsHelp + kHelpTail; }
 
 int usage(const std::string& message) {
@@ -101,6 +107,8 @@ int run_encode(const std::vector<std::string_view>& args) {
   }
   if (input.empty()) return usage("no input file");
   if (output.empty()) return usage("no output file (-o OUT.dbss)");
+  if (options.control.grid_shift != 0 && options.control.grid == 0)
+    return usage("--grid-shift moves a given grid's cells: it needs --grid N");
 
   {
     // Before the work, which can take minutes: an output that cannot be
@@ -130,7 +138,8 @@ int run_encode(const std::vector<std::string_view>& args) {
       // in silence (the mesh path checks the topology itself, so --strict
       // has nothing more to check either).
       for (const std::string_view a : args)
-        if (a == "--strict" || a == "--surface" || a == "--grid" || a == "--keep-outliers" || a == "--crease-angle")
+        if (a == "--strict" || a == "--surface" || a == "--grid" || a == "--grid-shift" || a == "--keep-outliers" ||
+            a == "--crease-angle")
           std::fprintf(stderr, "dbss encode: %s: note: %s is for point input; ignored for a mesh (--input points to reconstruct from its vertices)\n",
                        input.c_str(), std::string(a).c_str());
       const TriangleMesh mesh{std::move(geometry.value().points.xyz), std::move(geometry.value().triangles)};
@@ -219,7 +228,9 @@ int run_encode(const std::vector<std::string_view>& args) {
         (e.outliers.duplicates ? std::to_string(e.outliers.duplicates) + " duplicates merged, " : std::string()) +
             std::to_string(e.outliers.isolated) + " isolated points dropped, " + std::to_string(e.outliers.cluster_points) +
             " in " + std::to_string(e.outliers.clusters_dropped) + " small cluster(s) of " + std::to_string(e.outliers.clusters));
-  row("choose grid", st.seconds.grid, nullptr, "grid " + std::to_string(st.carving.grid) + (options.control.grid ? " (given)" : " (automatic)"));
+  row("choose grid", st.seconds.grid, nullptr,
+      "grid " + std::to_string(st.carving.grid) + (st.carving.shift != 0 ? ", moved " + fmt_shift(st.carving.shift) + " cell" : "") +
+          (options.control.grid ? " (given)" : " (automatic)"));
   row("cell carving", st.seconds.carve, nullptr,
       std::to_string(st.carving.occupied) + " occupied, " + std::to_string(st.carving.solid) + " solid, " +
           std::to_string(st.carving.repaired) + " filled for manifoldness" +

@@ -9,6 +9,10 @@ const char* const kEncodeOptionsHelp =
     "  --grid N               cells along the longest side for cell carving,\n"
     "                         2..1024 (default: the finest grid the point\n"
     "                         spacing keeps closed)\n"
+    "  --grid-shift S         with --grid: move the cells by S of a cell along\n"
+    "                         each axis, 0 <= S < 1 (default 0; meta's\n"
+    "                         encoder.params says grid-shift=0.5 where the grid\n"
+    "                         search moved its choice by half a cell)\n"
     "  --control-faces F      triangles of the control mesh, even, >= 4\n"
     "                         (default: a 24th of the carved shell's, or of\n"
     "                         twice an open sheet's; at least 96 + 64 per\n"
@@ -45,7 +49,7 @@ OptionParse parse_encode_option(const std::vector<std::string_view>& args, size_
     o.outliers.enabled = false;
     return OptionParse::ok;
   }
-  const bool known = a == "--grid" || a == "--control-faces" || a == "--control-bits" || a == "--levels" ||
+  const bool known = a == "--grid" || a == "--grid-shift" || a == "--control-faces" || a == "--control-bits" || a == "--levels" ||
                      a == "--error" || a == "--step" || a == "--effort" || a == "--surface" || a == "--crease-angle";
   if (!known) return OptionParse::not_mine;
   std::string_view v;
@@ -59,6 +63,9 @@ OptionParse parse_encode_option(const std::vector<std::string_view>& args, size_
   if (a == "--grid") {
     if (!parse_int(v, 2, 1024, n)) return error = "--grid needs a whole number from 2 to 1024", OptionParse::bad;
     o.control.grid = static_cast<int>(n);
+  } else if (a == "--grid-shift") {
+    if (!parse_double(v, x) || !(x >= 0 && x < 1)) return error = "--grid-shift needs a number from 0 to under 1", OptionParse::bad;
+    o.control.grid_shift = x;
   } else if (a == "--control-faces") {
     if (!parse_int(v, 4, 1 << 24, n) || n % 2) return error = "--control-faces needs an even whole number of at least 4", OptionParse::bad;
     o.control.control_faces = static_cast<uint32_t>(n);

@@ -263,7 +263,7 @@ Result<ControlMeshStages> build_control_mesh(const PointIndex& index, const Cont
     s.seconds.grid = since(t), s.cpu_seconds.grid = cpu_since(t);
     stage("carving cells");
     t = Clock::now();
-    s.cells = carve(points, o.grid, &s.carving);
+    s.cells = carve(points, o.grid, &s.carving, o.grid_shift);
   } else {
     // The search carves its choice on the way: its time is the grid's.
     CarvingChoice chosen = choose_carving(points, index);

@@ -386,7 +386,12 @@ Result<Encoding> encode_points(const PointIndex& input_index, const EncodeOption
   c.header.version_minor = format::minimum_version_minor(c);
   char error_text[32];
   std::snprintf(error_text, sizeof error_text, "%g", e.error);
-  const std::string params = "grid=" + std::to_string(e.stages.carving.grid) + " control-faces=" +
+  // The grid search may move its chosen cells by half a cell (a handle only
+  // one placement shows): recorded, so --grid N --grid-shift S carves the
+  // same cells again.  Left out when 0, as every file before it had it.
+  char shift_text[48] = "";
+  if (e.stages.carving.shift != 0) std::snprintf(shift_text, sizeof shift_text, " grid-shift=%g", e.stages.carving.shift);
+  const std::string params = "grid=" + std::to_string(e.stages.carving.grid) + shift_text + " control-faces=" +
                              std::to_string(e.stages.control.triangle_count()) + " control-bits=" +
                              std::to_string(e.control_bits) + " levels=" + std::to_string(level_count) + (o.levels == kAutoLevels ? " (auto)" : "") +
                              " error=" + error_text + " effort=" + std::to_string(o.effort) +

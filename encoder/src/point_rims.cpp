@@ -24,14 +24,13 @@ constexpr size_t kNeighbours = 24;
 // point in five; 150 degrees among 23 at about one in 5,000.  At a rim
 // the gap is about 180 degrees.
 constexpr double kRimGap = 5.0 * std::numbers::pi / 6.0;
-// Fewest boundary points a rim is made of: fewer are a ragged spot in a
-// sparse scan, not the edge of an opening.
-constexpr size_t kMinRimPoints = 8;
 // A rim runs (most of the way) round its centre: of 12 sectors of 30
-// degrees round its axis, at least 8 hold some of its points (an arc, the
-// edge of a patch, is not the end of a tube; a sparse scan's rim has gaps).
+// degrees round its axis, at least RimOptions::min_sectors (8) hold some of
+// its points (an arc, the edge of a patch, is not the end of a tube; a
+// sparse scan's rim has gaps).  Fewer than RimOptions::min_points (8)
+// boundary points are a ragged spot in a sparse scan, not the edge of an
+// opening.
 constexpr int kSectors = 12;
-constexpr int kMinSectors = 8;
 // Largest mean wall of a pair taken for a tube's two ends (the bound
 // hole_bridge.cpp builds tubes under), and the least cosine between the
 // gap and a facing rim's axis (its doubtful rule), on the points instead
@@ -60,7 +59,7 @@ std::pair<V3, V3> tangents(V3 n) {
 
 }  // namespace
 
-std::vector<PointRim> find_point_rims(const PointIndex& index, size_t max_points) {
+std::vector<PointRim> find_point_rims(const PointIndex& index, size_t max_points, const RimOptions& options) {
   const PointCloud& pc = index.points();
   const size_t n = pc.size();
   std::vector<PointRim> rims;
@@ -76,7 +75,7 @@ std::vector<PointRim> find_point_rims(const PointIndex& index, size_t max_points
     share.xyz.reserve(3 * (n / stride + 1));
     for (size_t i = 0; i < n; i += stride) share.xyz.insert(share.xyz.end(), &pc.xyz[3 * i], &pc.xyz[3 * i] + 3);
     const PointIndex share_index(share);
-    return find_point_rims(share_index, max_points);
+    return find_point_rims(share_index, max_points, options);
   }
   // The boundary points: where each is, its surface normal, and the
   // direction (in its tangent plane) of the empty sector, into the opening.
@@ -131,7 +130,7 @@ std::vector<PointRim> find_point_rims(const PointIndex& index, size_t max_points
     into.push_back({c * e1[0] + s * e2[0], c * e1[1] + s * e2[1], c * e1[2] + s * e2[2]});
   }
   const size_t m = edge.size();
-  if (m < kMinRimPoints) return rims;
+  if (m < options.min_points) return rims;
   // Link boundary points closer than twice their neighbourhoods' radius
   // (about three local spacings each), so a sparse stretch of rim stays
   // one.
@@ -139,14 +138,14 @@ std::vector<PointRim> find_point_rims(const PointIndex& index, size_t max_points
   {
     const PointIndex edge_index(edge);
     for (size_t i = 0; i < m; ++i) {
-      edge_index.within(&edge.xyz[3 * i], static_cast<float>(2 * reach_of[i]), near);
+      edge_index.within(&edge.xyz[3 * i], static_cast<float>(options.link * reach_of[i]), near);
       for (uint32_t j : near) sets.join(static_cast<uint32_t>(i), j);
     }
   }
   std::vector<std::vector<uint32_t>> groups(m);
   for (size_t i = 0; i < m; ++i) groups[sets.find(static_cast<uint32_t>(i))].push_back(static_cast<uint32_t>(i));
   for (const std::vector<uint32_t>& g : groups) {
-    if (g.size() < kMinRimPoints) continue;
+    if (g.size() < options.min_points) continue;
     const PointPlane plane = fit_plane(edge, g.data(), g.size());
     PointRim r;
     r.centre = plane.point;
@@ -189,7 +188,8 @@ std::vector<PointRim> find_point_rims(const PointIndex& index, size_t max_points
       const double t = std::atan2(dot(d, e2), dot(d, e1)) + std::numbers::pi;
       sector[std::min(kSectors - 1, static_cast<int>(t / (2 * std::numbers::pi) * kSectors))] = true;
     }
-    if (std::count(sector, sector + kSectors, true) < kMinSectors || r.radius <= 0) continue;
+    r.sectors = static_cast<int>(std::count(sector, sector + kSectors, true));
+    if (r.sectors < options.min_sectors || r.radius <= 0) continue;
     rims.push_back(r);
   }
   return rims;

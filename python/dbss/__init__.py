@@ -9,7 +9,7 @@ bytes and the decoded floats are those of the command line.
     dbss.info(data)["level_table"]                         # as `dbss info --json`
 
 Encode options are the flags of ``dbss encode`` as keywords (``levels``,
-``error``, ``step``, ``grid``, ``control_faces``, ``control_bits``,
+``error``, ``step``, ``grid``, ``grid_shift``, ``control_faces``, ``control_bits``,
 ``effort``, ``surface``, ``keep_outliers``, ``strict``), plus
 ``source_name`` (the `meta` chunk's "source") and ``threads``.  They are
 read by the command's own parser, so bad values raise ValueError with its

@@ -37,7 +37,7 @@ EXTENSIONS = (".ply", ".obj", ".off", ".xyz", ".stl")
 # The options of `dbss encode` that change the output, as (flag, keyword, takes a value).
 ENCODE_FLAGS = [
     ("--levels", "levels", True), ("--error", "error", True), ("--step", "step", True),
-    ("--grid", "grid", True), ("--control-faces", "control_faces", True),
+    ("--grid", "grid", True), ("--grid-shift", "grid_shift", True), ("--control-faces", "control_faces", True),
     ("--control-bits", "control_bits", True), ("--effort", "effort", True),
     ("--surface", "surface", True), ("--keep-outliers", "keep_outliers", False),
     ("--strict", "strict", False),

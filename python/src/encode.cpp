@@ -40,7 +40,7 @@ Settings settings_from(const py::dict& kwargs, const char* fn) {
   Settings s;
   s.options.levels = kAutoLevels;  // the command's default
   s.options.encoder_version = DBSS_VERSION;
-  static const std::vector<std::string> flags = {"levels", "error", "step", "grid", "control_faces",
+  static const std::vector<std::string> flags = {"levels", "error", "step", "grid", "grid_shift", "control_faces",
                                                  "control_bits", "effort", "surface"};
   std::vector<std::string> args, keys;
   for (auto item : kwargs) {
@@ -80,6 +80,8 @@ Settings settings_from(const py::dict& kwargs, const char* fn) {
       throw py::value_error(std::string(fn) + "(): " + keys[at] + "=" + (at + 1 < args.size() ? args[at + 1] : "") +
                             ": " + error);
   }
+  if (s.options.control.grid_shift != 0 && s.options.control.grid == 0)
+    throw py::value_error(std::string(fn) + "(): grid_shift moves a given grid's cells: it needs grid");
   return s;
 }
 
@@ -109,6 +111,7 @@ py::dict stats_dict(const Encoding& e, size_t points_in, const EncodeOptions& o)
   grid["cpu_seconds"] = st.cpu_seconds.grid;
   grid["grid"] = st.carving.grid;
   grid["given"] = o.control.grid != 0;
+  grid["shift"] = st.carving.shift;
   stages["choose_grid"] = grid;
   py::dict carve = mesh_counts(st.seconds.carve, nullptr);
   carve["cpu_seconds"] = st.cpu_seconds.carve;

@@ -110,6 +110,10 @@ def test_wrong_arrays_and_options(torus_points):
         dbss.encode(torus_points, levlz=2)
     with pytest.raises(ValueError, match="--grid needs a whole number"):
         dbss.encode(torus_points, grid=1)
+    with pytest.raises(ValueError, match="--grid-shift needs a number"):
+        dbss.encode(torus_points, grid=30, grid_shift=1.5)
+    with pytest.raises(ValueError, match="grid_shift moves a given grid's cells: it needs grid"):
+        dbss.encode(torus_points, grid_shift=0.5)
     with pytest.raises(ValueError, match="--error needs"):
         dbss.encode(torus_points, error=0.5)
     with pytest.raises(ValueError, match="--surface needs"):

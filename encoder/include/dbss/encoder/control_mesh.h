@@ -27,6 +27,11 @@ const char* surface_mode_name(SurfaceMode m);
 
 struct ControlMeshOptions {
   int grid = 0;                // cells along the longest side; 0 = choose_carving()
+  // With a given grid: the cells moved by this share of a cell along each
+  // axis, 0 <= grid_shift < 1 (the grid search's choice may be moved by half
+  // a cell; meta's grid-shift= records it, so --grid N --grid-shift 0.5
+  // carves what the search carved).  Ignored when grid is 0.
+  double grid_shift = 0;
   SurfaceMode surface = SurfaceMode::automatic;
   uint32_t control_faces = 0;  // 0 = default_control_faces()
   ShrinkWrapOptions shrink_wrap;

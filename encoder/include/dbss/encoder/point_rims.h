@@ -34,6 +34,17 @@ struct PointRim {
   // hole in a wall.
   double wall = 0;
   size_t points = 0;  // boundary points on the rim (of those examined)
+  int sectors = 0;    // of 12 sectors of 30 degrees round the axis, those holding its points
+};
+
+// How strict find_point_rims is.  The defaults find the rims the encoder
+// joins tubes between; the self-check also looks with looser ones
+// (scan_check.cpp), where a sparse scan's rim has wider gaps (fewer sectors
+// hold points) or breaks into groups of a few boundary points.
+struct RimOptions {
+  size_t min_points = 8;  // fewest boundary points a rim is made of
+  int min_sectors = 8;    // of 12 sectors of 30 degrees round its axis, fewest that hold its points
+  double link = 2;        // boundary points closer than this many neighbourhood radii are one rim
 };
 
 // The closed rims of openings in the points: boundary points (a point whose
@@ -42,7 +53,8 @@ struct PointRim {
 // of more than `max_points` points is judged by every ceil(n / max_points)-th
 // of them (in the cloud's order) as a cloud of its own, so the cost is
 // bounded on any cloud.  Deterministic for a given point order.
-std::vector<PointRim> find_point_rims(const PointIndex& index, size_t max_points = size_t{1} << 16);
+std::vector<PointRim> find_point_rims(const PointIndex& index, size_t max_points = size_t{1} << 16,
+                                      const RimOptions& options = {});
 
 // Pairs of rims (indices into `rims`) that look like a tube's two cut ends:
 // sizes within a factor of two, a gap under six times the larger radius,
