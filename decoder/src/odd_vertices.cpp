@@ -12,6 +12,7 @@
 #endif
 
 #include "butterfly_terms.h"
+#include "zero_displacement.h"
 
 // AVX-sized vectors are passed by value only between functions of one
 // instruction set (see odd_vertex_kernels.inc), so the warning that their

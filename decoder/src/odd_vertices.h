@@ -23,7 +23,9 @@ namespace dbss::detail {
 // For the same edges, displaced_points: the normal at the odd vertex from
 // the undisplaced child level (evens p, odds per half-edge as
 // stencil_points wrote them), and out[3e..] = odd vertex moved by q[e] *
-// step along it.
+// step along it.  With `finite` (every float of p and per_half is finite),
+// an edge whose q[e] is 0 and whose point has no -0 coordinate is copied
+// without its normal: the same bits (zero_displacement.h).
 //
 // displaced_points_chosen: the same, with each q[e] chosen by `choose` from
 // the undisplaced point and its unit normal (as this pass computes them)
@@ -35,7 +37,7 @@ namespace dbss::detail {
 struct OddVertexKernels {
   void (*stencil_points)(const TopologyRef& t, const float* p, uint32_t fb, uint32_t fe, float* odd, float* per_half);
   void (*displaced_points)(const TopologyRef& t, const float* p, const float* per_half, const int32_t* q, float step,
-                           uint32_t fb, uint32_t fe, float* out);
+                           uint32_t fb, uint32_t fe, float* out, bool finite);
   void (*displaced_points_chosen)(const TopologyRef& t, const float* p, const float* per_half,
                                   const OddChooser& choose, int32_t* q, float step, uint32_t fb, uint32_t fe,
                                   float* out);

@@ -5,6 +5,7 @@
 #include <utility>
 
 #include "boundary_shift.h"
+#include "zero_displacement.h"
 #include "odd_vertices.h"
 
 namespace dbss::detail {
@@ -142,25 +143,43 @@ void Refiner::step_impl(const int32_t* q, const OddChooser* choose, int32_t* cho
   // triangles, their (fresh) array holds the points, which saves the
   // memory and the page faults of a separate scratch array.
   triangles_.resize_for_overwrite(12 * size_t{t.face_count}, &pool_);
+  // A level whose integers are all 0 (and that moves nothing across the
+  // boundary) is its stencil points, bit for bit, when they and the evens
+  // are finite and no odd coordinate is -0 (zero_displacement.h): then it
+  // needs no normals, and pass 1 writes straight into the output.
+  const size_t boundary_edges = 2 * size_t{t.edge_count} - 3 * size_t{t.face_count};
+  const bool zero_level = q && all_zero(q, odds) && (!boundary.q || all_zero(boundary.q, boundary_edges));
   // Pass 1: every odd vertex at its stencil point (normals need all of
   // them); straight into the output when nothing moves, else per half-edge.
-  const bool moves = q || choose;
-  float* per_half = moves ? triangles_.reuse_as<float>(9 * size_t{t.face_count} + 1) : nullptr;
-  if (per_half) per_half[9 * size_t{t.face_count}] = 0;  // slack (inside the 12 per face)
-  parallel(t.face_count, threads, [&](uint32_t fb, uint32_t fe) {
-    kernels_.stencil_points(t, p, fb, fe, per_half ? nullptr : out_odd, per_half);
-    // In 64 bits: where size_t has 32 (WebAssembly), evens * fe overflows it
-    // from about 65,000 evens on (the web build copied too few evens).
-    const size_t vb = static_cast<size_t>(uint64_t{evens} * fb / t.face_count);
-    const size_t ve = static_cast<size_t>(uint64_t{evens} * fe / t.face_count);
-    std::memcpy(out + 3 * vb, p + 3 * vb, sizeof(float) * 3 * (ve - vb));
-  });
-  // Pass 2: normals from the undisplaced level, and the displacements.
-  if (per_half)
+  const auto stencil_pass = [&](float* per_half) {
+    if (per_half) per_half[9 * size_t{t.face_count}] = 0;  // slack (inside the 12 per face)
+    parallel(t.face_count, threads, [&](uint32_t fb, uint32_t fe) {
+      kernels_.stencil_points(t, p, fb, fe, per_half ? nullptr : out_odd, per_half);
+      // In 64 bits: where size_t has 32 (WebAssembly), evens * fe overflows it
+      // from about 65,000 evens on (the web build copied too few evens).
+      const size_t vb = static_cast<size_t>(uint64_t{evens} * fb / t.face_count);
+      const size_t ve = static_cast<size_t>(uint64_t{evens} * fe / t.face_count);
+      std::memcpy(out + 3 * vb, p + 3 * vb, sizeof(float) * 3 * (ve - vb));
+    });
+  };
+  const auto half_points = [&] { return triangles_.reuse_as<float>(9 * size_t{t.face_count} + 1); };
+  float* per_half = (q || choose) && !zero_level ? half_points() : nullptr;
+  stencil_pass(per_half);
+  if (zero_level && !(all_finite(p, 3 * size_t{evens}) && all_finite_no_negative_zero(out_odd, 3 * size_t{odds}))) {
+    // Not provably the stencil points (never seen in a real file): the
+    // whole computation.
+    per_half = half_points();
+    stencil_pass(per_half);
+  }
+  // Pass 2: normals from the undisplaced level, and the displacements;
+  // with every point finite, the odd vertices whose q is 0 are copied.
+  if (per_half) {
+    const bool finite = q && all_finite(p, 3 * size_t{evens}) && all_finite(per_half, 9 * size_t{t.face_count});
     parallel(t.face_count, threads, [&](uint32_t fb, uint32_t fe) {
       if (choose) kernels_.displaced_points_chosen(t, p, per_half, *choose, chosen, step, fb, fe, out_odd);
-      else kernels_.displaced_points(t, p, per_half, q, step, fb, fe, out_odd);
+      else kernels_.displaced_points(t, p, per_half, q, step, fb, fe, out_odd, finite);
     });
+  }
   // Pass 2b (format 1.3, decoding.md section 7a): boundary odd vertices
   // across the boundary, one thread (boundary edges are few, and the k-th
   // value needs the count of boundary edges before it).

@@ -9,7 +9,7 @@
 import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
 import { spawnSync } from 'node:child_process';
-import { mkdirSync, readFileSync, writeFileSync } from 'node:fs';
+import { mkdirSync, readFileSync, readdirSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { chromium } from 'playwright-core';
@@ -75,6 +75,8 @@ before(async () => {
   runDbss(['decode', example, '--level', '2', '-o', glbLevel]);
   files = { '/example.glb': glb, '/example-draco.glb': glbDraco, '/level2.glb': glbLevel, '/example.dbss': example, '/cut.dbss': cut, '/damaged-level2.dbss': damaged, '/damaged-control.dbss': damagedCtrl,
     '/garbage-control.dbss': join(repo, 'tests/format/data/garbage-control.dbss') };
+  for (const f of readdirSync(join(repo, 'tests/golden/v1')).filter((f) => f.endsWith('.dbss')))
+    files[`/golden/${f}`] = join(repo, 'tests/golden/v1', f);
   tocOf = { ctrl, levl, size: bytes.length };
   const mounts = repoMounts(repo, buildDir);
   slow = await startServer({ rate: RATE, piece: 512, files, mounts });
@@ -190,6 +192,31 @@ test('screenshot: the mesh covers a good part of the canvas', async () => {
   console.log(`# mesh covers ${(100 * fraction).toFixed(1)}% of the canvas; screenshot ${join(artefacts, 'viewer.png')}`);
   assert.ok(fraction > 0.1, `only ${(100 * fraction).toFixed(1)}% of the canvas differs from the background`);
   await page.close();
+});
+
+test('without WebAssembly SIMD the worker loads the scalar build by itself: the example and every golden file hash as natively', async () => {
+  // web/test/pages/no-simd.html runs web/worker.mjs unchanged, with
+  // WebAssembly.validate refusing SIMD modules as an engine without SIMD
+  // does; which module it fetched is read off the network.
+  const context = await browser.newContext();
+  const wasm = [];
+  context.on('request', (r) => { if (r.url().endsWith('.wasm')) wasm.push(new URL(r.url()).pathname); });
+  const page = await context.newPage();
+  const problems = [];
+  page.on('pageerror', (e) => problems.push(e.message));
+  const names = Object.keys(files).filter((f) => f === '/example.dbss' || f.startsWith('/golden/'));
+  assert.ok(names.length >= 13);
+  await page.goto(`${fast.url}/web/test/pages/no-simd.html?${names.map((f) => `file=${encodeURIComponent(f)}`).join('&')}`);
+  await page.waitForFunction(() => window.noSimdResult, null, { timeout: 120000 });
+  const res = await page.evaluate(() => window.noSimdResult);
+  await context.close();
+  assert.deepEqual(problems, []);
+  assert.equal(res.workerError, undefined);
+  assert.deepEqual(wasm, ['/build-web/dist/dbss_wasm_scalar.wasm']);
+  for (const f of names) {
+    assert.equal(res[f].error, null, f);
+    assert.deepEqual(res[f].hashes, nativeHashes(files[f]), f);
+  }
 });
 
 // The page web/test/pages/gltf.html: what GLTFLoader made of a .glb.
