@@ -11,7 +11,11 @@
 // usage: rd_bench [--points N] [--noise F] [--levels L] [--qp 8,10,11,12]
 //                 [--samples S] [--seed S] [--methods dbss,afront,poisson]
 //                 [--csv OUT.csv] [--peers IN.csv] [--control-bits B] [--skip-absent]
-//                 [--fixed-control] [MESH_FILE...]
+//                 [--fixed-control] [--plain-rounding] [--step-bits] [MESH_FILE...]
+//   --plain-rounding: the control vertices rounded to Draco's nearest grid
+//   point (EncodeOptions::round_along_surface off); --step-bits: Draco's
+//   bits from the step (EncodeOptions::control_bits_from_level0 off); both:
+//   the control mesh as before issue 15's ninth session.
 //   --peers: the peers' rows for each shape are read from the CSV of an
 //   earlier run (same --points, --noise, --seed and --samples) instead of
 //   reconstructing again (Poisson takes minutes on the armadillo under
@@ -54,6 +58,8 @@ struct Options {
   bool fixed_control = false;  // dbss over the default control mesh only (EncodeOptions::choose_control off): the before
   bool skip_absent = false;  // the ctest entry: an absent mesh skips (exit 77) unless CI=true
   int control_bits = 0;      // EncodeOptions::control_bits (0: the encoder's own choice)
+  bool plain_rounding = false;  // EncodeOptions::round_along_surface off
+  bool step_bits = false;       // EncodeOptions::control_bits_from_level0 off
   std::string csv;
   std::string peers_csv;     // peer rows from an earlier run's CSV
   std::vector<std::string> meshes;
@@ -62,7 +68,7 @@ struct Options {
 constexpr const char* kUsage =
     "usage: rd_bench [--points N] [--noise F] [--levels L] [--qp 8,10,11,12] [--samples S] [--seed S]\n"
     "                [--methods dbss,afront,poisson] [--csv OUT.csv] [--peers IN.csv] [--control-bits B]\n"
-    "                [--skip-absent] [--fixed-control]\n"
+    "                [--skip-absent] [--fixed-control] [--plain-rounding] [--step-bits]\n"
     "                [MESH_FILE...]\n";
 
 // "L3", "qp 11".  (Appending, not `"L" + std::to_string(l)`, which GCC 12
@@ -95,6 +101,8 @@ bool parse(int argc, char** argv, Options& o) {
     else if (a == "--csv" && has_value) o.csv = argv[++i];
     else if (a == "--peers" && has_value) o.peers_csv = argv[++i];
     else if (a == "--control-bits" && has_value) o.control_bits = std::atoi(argv[++i]);
+    else if (a == "--plain-rounding") o.plain_rounding = true;
+    else if (a == "--step-bits") o.step_bits = true;
     else if (a == "--skip-absent") o.skip_absent = true;
     else if (a == "--fixed-control") o.fixed_control = true;
     else if (a == "--qp" && has_value) {
@@ -157,6 +165,8 @@ bool run_dbss(const std::string& shape, const dbss::PointCloud& points, const Tr
   eo.levels = o.levels;
   eo.choose_control = !o.fixed_control;
   eo.control_bits = o.control_bits;
+  eo.round_along_surface = !o.plain_rounding;
+  eo.control_bits_from_level0 = !o.step_bits;
   const auto t0 = Clock::now();
   auto e = dbss::encode_points(points, eo);
   const double seconds = since(t0);
@@ -174,8 +184,12 @@ bool run_dbss(const std::string& shape, const dbss::PointCloud& points, const Tr
     std::snprintf(buf, sizeof buf, " L%u %.2f", st.level, st.odd ? 8.0 * static_cast<double>(st.bytes) / static_cast<double>(st.odd) : 0.0);
     per_level += buf;
   }
-  std::fprintf(stderr, "rd_bench: %s: control %zu bytes (%d-bit positions, %zu faces); bits per displacement:%s\n", shape.c_str(),
-               enc.contents.control_mesh.size(), enc.control_bits, enc.control.triangle_count(), per_level.c_str());
+  std::fprintf(stderr,
+               "rd_bench: %s: control %zu bytes (%d-bit positions, %zu faces; mean offset along the normal %.3g grid spacings, "
+               "%.3g by plain rounding); bits per displacement:%s\n",
+               shape.c_str(), enc.contents.control_mesh.size(), enc.control_bits, enc.control.triangle_count(),
+               enc.rounding.grid > 0 ? enc.rounding.chosen_normal / enc.rounding.grid : 0.0,
+               enc.rounding.grid > 0 ? enc.rounding.nearest_normal / enc.rounding.grid : 0.0, per_level.c_str());
   dbss::ProgressiveDecoder decoder;
   uint64_t fed = 0;
   for (uint32_t l = 0; l <= o.levels; ++l) {

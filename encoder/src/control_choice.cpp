@@ -8,16 +8,14 @@
 
 namespace dbss {
 
-namespace {
-
 // Mean distance from (a stride of) the points to the level's triangles and
 // from (a stride of) its vertices to the least-squares plane of their 8
 // nearest points, averaged: two-sided, like the benchmark's error against
 // the true surface, since one side alone is fooled (a surface that wiggles
 // through every point is near all of them; the vertices of one that cuts
 // corners are near the points' planes).
-double distance_to_points(const std::vector<float>& positions, const std::vector<uint32_t>& triangles,
-                          const PointIndex& index) {
+double level_distance_to_points(const std::vector<float>& positions, const std::vector<uint32_t>& triangles,
+                                const PointIndex& index) {
   const PointCloud& pc = index.points();
   const TriangleMesh level{positions, triangles};
   const TriangleTree tree(level);
@@ -36,8 +34,6 @@ double distance_to_points(const std::vector<float>& positions, const std::vector
   return 0.5 * (to_level / static_cast<double>(std::max<size_t>(m, 1)) + to_points);
 }
 
-}  // namespace
-
 std::vector<RdPoint> encoder_rd_curve(const Encoding& e, const PointIndex& index) {
   std::vector<RdPoint> curve;
   const size_t points = index.points().size();
@@ -48,7 +44,7 @@ std::vector<RdPoint> encoder_rd_curve(const Encoding& e, const PointIndex& index
       if (e.levels.positions[l - 1].size() / 3 > points) break;
       bytes += static_cast<double>(e.levels.chunks[l - 1].size());
     }
-    curve.push_back({bytes, distance_to_points(e.levels.positions[l], e.levels.triangles[l], index)});
+    curve.push_back({bytes, level_distance_to_points(e.levels.positions[l], e.levels.triangles[l], index)});
   }
   return curve;
 }

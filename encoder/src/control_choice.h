@@ -20,6 +20,12 @@ struct RdPoint {
   double error = 0;  // model units: the mean of points -> level and level's vertices -> the points' local planes
 };
 
+// The mean of two distances between a level and the points (model units):
+// (a stride of at most kRdProbe of) the points to the level's triangles, and
+// the level's vertices to the least-squares plane of their 8 nearest points.
+double level_distance_to_points(const std::vector<float>& positions, const std::vector<uint32_t>& triangles,
+                                const PointIndex& index);
+
 // The curve of `e` (its levels encoded, not yet serialized) from level 0 up
 // to the level that crosses the points' density: the later levels store
 // only zeros (dead_zone_steps), cost the same 0.1 KB whatever the control

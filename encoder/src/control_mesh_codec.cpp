@@ -8,17 +8,39 @@
 
 namespace dbss {
 
-int control_bits_for_step(const TriangleMesh& mesh, float step) {
-  if (mesh.vertex_count() == 0 || !(step > 0)) return 16;
+namespace {
+
+// The mesh's largest extent along an axis: what Draco's grid spans.
+double largest_extent(const TriangleMesh& mesh) {
   float lo[3], hi[3];
   for (int a = 0; a < 3; ++a) lo[a] = hi[a] = mesh.positions[a];
   for (size_t v = 0; v < mesh.vertex_count(); ++v)
     for (int a = 0; a < 3; ++a)
       lo[a] = std::min(lo[a], mesh.positions[3 * v + a]), hi[a] = std::max(hi[a], mesh.positions[3 * v + a]);
-  const double extent = std::max({double{hi[0]} - lo[0], double{hi[1]} - lo[1], double{hi[2]} - lo[2]});
+  return std::max({double{hi[0]} - lo[0], double{hi[1]} - lo[1], double{hi[2]} - lo[2]});
+}
+
+// The fewest bits (8..16) whose grid, extent / 2^bits, is at most `spacing`.
+int bits_for_spacing(double extent, double spacing) {
+  return static_cast<int>(std::clamp(std::ceil(std::log2(extent / spacing)), 8.0, 16.0));
+}
+
+}  // namespace
+
+int control_bits_for_step(const TriangleMesh& mesh, float step) {
+  if (mesh.vertex_count() == 0 || !(step > 0)) return 16;
+  const double extent = largest_extent(mesh);
   if (!(extent > 0)) return 16;
   // Draco's quantization rounds to within half of extent / 2^bits.
-  return static_cast<int>(std::clamp(std::ceil(std::log2(extent / step)), 8.0, 16.0));
+  return bits_for_spacing(extent, step);
+}
+
+int control_bits_for_error(const TriangleMesh& mesh, double level0_distance, float step) {
+  const int by_step = control_bits_for_step(mesh, step);
+  if (mesh.vertex_count() == 0 || !(level0_distance > 0) || !std::isfinite(level0_distance)) return by_step;
+  const double extent = largest_extent(mesh);
+  if (!(extent > 0)) return by_step;
+  return std::min(by_step, bits_for_spacing(extent, kControlGridPerError * level0_distance));
 }
 
 Result<std::vector<uint8_t>> encode_control_mesh(const TriangleMesh& in, const ControlCodecOptions& options) {

@@ -18,7 +18,8 @@ void set_extent_and_step(Encoding& e, std::span<const float> xyz, const EncodeOp
 // again into e.control, which is what a decoder sees and what every level
 // continues from; fills the header's control-mesh fields and the chunk's
 // bytes.  An error here is internal (Draco or the topology refused what
-// the encoder made).
-Status control_mesh_through_draco(Encoding& e);
+// the encoder made).  `placed` (may be null): those vertices at other
+// positions, encoded instead (the point path's rounding along the surface).
+Status control_mesh_through_draco(Encoding& e, const TriangleMesh* placed = nullptr);
 
 }  // namespace dbss

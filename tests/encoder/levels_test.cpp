@@ -15,6 +15,8 @@
 #include "dbss/encoder/levels.h"
 #include "dbss/measure/surface_distance.h"
 #include "dbss/encoder/point_distances.h"
+#include "dbss/encoder/point_index.h"
+#include "dbss/encoder/triangle_tree.h"
 #include "dbss/format/reader.h"
 #include "dbss/format/writer.h"
 
@@ -184,7 +186,7 @@ TEST_CASE("error bounds on every test shape: smooth shapes get closer level by l
   }
 }
 
-TEST_CASE("control mesh bits follow the step: about half a step of rounding at every control vertex") {
+TEST_CASE("control mesh bits follow level 0's distance to the points, never finer than the step's") {
   TriangleMesh cube;  // only the extent matters: 2 along x
   cube.positions = {-1, 0, 0, 1, 0.5f, 0, 0, 1, 0.25f};
   cube.triangles = {0, 1, 2};
@@ -192,6 +194,15 @@ TEST_CASE("control mesh bits follow the step: about half a step of rounding at e
   CHECK(control_bits_for_step(cube, 2.0f / 1025) == 11);
   CHECK(control_bits_for_step(cube, 1.0f) == 8);            // never under 8
   CHECK(control_bits_for_step(cube, 1e-9f) == 16);          // never over the old fixed 16
+  // The point path: a grid of kControlGridPerError times level 0's distance.
+  const double d = 2.0 / 1000 / kControlGridPerError;         // a grid of 2/1000: 10 bits
+  CHECK(control_bits_for_error(cube, d, 2.0f / 5000) == 10);
+  CHECK(control_bits_for_error(cube, 2.0 / 1023 / kControlGridPerError, 2.0f / 5000) == 10);
+  CHECK(control_bits_for_error(cube, 2.0 / 1025 / kControlGridPerError, 2.0f / 5000) == 11);
+  CHECK(control_bits_for_error(cube, d, 2.0f / 300) == 9);    // never finer than the step's
+  CHECK(control_bits_for_error(cube, 0.0, 2.0f / 5000) == 13);  // no distance: the step's
+  CHECK(control_bits_for_error(cube, NAN, 2.0f / 5000) == 13);
+  CHECK(control_bits_for_error(cube, 10.0, 2.0f / 5000) == 8);  // never under 8
 
   const test::Shape s = test::genus_shapes()[1];
   const PointCloud pc = test::sample_sdf(s.sdf, s.lo, s.hi, 20000);
@@ -200,25 +211,55 @@ TEST_CASE("control mesh bits follow the step: about half a step of rounding at e
   auto e = encode_points(pc, o);
   REQUIRE(e.ok());
   const Encoding& enc = e.value();
-  CHECK(enc.control_bits == control_bits_for_step(enc.stages.control, enc.step));
-  CHECK(enc.control_bits < 16);  // the default error (1e-4) needs 13 bits or so
-  CHECK(format::read_all(enc.bytes).header().control_position_bits == enc.control_bits);
-  // Every decoded control vertex lies within half a step (per coordinate,
-  // plus binary32 rounding) of a vertex the encoder built: Draco rounds
-  // to that grid.
-  const std::vector<float>& before = enc.stages.control.positions;
-  double worst = 0;
-  for (size_t v = 0; v < enc.control.vertex_count(); ++v) {
-    double best = 1e30;
-    for (size_t w = 0; w < before.size() / 3; ++w) {
-      double d = 0;
-      for (int a = 0; a < 3; ++a) d = std::max(d, std::abs(double{enc.control.positions[3 * v + a]} - before[3 * w + a]));
-      best = std::min(best, d);
-    }
-    worst = std::max(worst, best);
+  // Level 0's distance to the points, as the encoder measures it: the mean
+  // of the points' distance to the control mesh and its vertices' to their
+  // 8 nearest points' plane.
+  const PointIndex index(pc);
+  const TriangleTree tree(enc.stages.control);
+  double to_mesh = 0;
+  for (size_t i = 0; i < pc.size(); ++i) {
+    const double p[3] = {pc.xyz[3 * i], pc.xyz[3 * i + 1], pc.xyz[3 * i + 2]};
+    to_mesh += tree.distance(p);
   }
-  INFO("worst control vertex rounding " << worst << ", step " << enc.step);
-  CHECK(worst <= 0.5 * enc.step * 1.01);
+  const double level0 = 0.5 * (to_mesh / static_cast<double>(pc.size()) +
+                               vertices_to_points_surface(enc.stages.control.positions, index).mean);
+  INFO("level 0 " << level0 << ", step " << enc.step << ", bits " << enc.control_bits);
+  CHECK(enc.control_bits == control_bits_for_error(enc.stages.control, level0, enc.step));
+  CHECK(enc.control_bits < control_bits_for_step(enc.stages.control, enc.step));  // level 0 is far coarser than the step here
+  CHECK(format::read_all(enc.bytes).header().control_position_bits == enc.control_bits);
+  // Every decoded control vertex lies within a grid spacing and a half of
+  // sliding along the surface plus half a spacing off it (per coordinate,
+  // plus binary32 rounding) of a vertex the encoder built, and within half
+  // a spacing when Draco rounds it to the nearest grid point; the spacing is
+  // at most kControlGridPerError times level 0's distance.
+  const auto worst_rounding = [&](const Encoding& x) {
+    const std::vector<float>& before = x.stages.control.positions;
+    double worst = 0;
+    for (size_t v = 0; v < x.control.vertex_count(); ++v) {
+      double best = 1e30;
+      for (size_t w = 0; w < before.size() / 3; ++w) {
+        double d = 0;
+        for (int a = 0; a < 3; ++a) d = std::max(d, std::abs(double{x.control.positions[3 * v + a]} - before[3 * w + a]));
+        best = std::min(best, d);
+      }
+      worst = std::max(worst, best);
+    }
+    return worst;
+  };
+  const double grid = kControlGridPerError * level0 * 1.01;
+  INFO("worst control vertex rounding " << worst_rounding(enc) << ", grid at most " << grid);
+  CHECK(worst_rounding(enc) <= (kRoundingSlide + 0.5) * grid);
+  // Along the normal the chosen grid points are far nearer the surface than
+  // the nearest ones.
+  INFO("mean offset along the normal " << enc.rounding.chosen_normal << ", plain rounding " << enc.rounding.nearest_normal);
+  CHECK(enc.rounding.vertices == enc.control.vertex_count());
+  CHECK(enc.rounding.chosen_normal < 0.5 * enc.rounding.nearest_normal);
+  o.round_along_surface = false;
+  auto plain = encode_points(pc, o);
+  REQUIRE(plain.ok());
+  CHECK(plain.value().control_bits == enc.control_bits);
+  CHECK(worst_rounding(plain.value()) <= 0.5 * grid);
+  o.round_along_surface = true;
 
   // Given bits are kept.
   o.control_bits = 16;

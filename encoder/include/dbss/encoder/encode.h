@@ -11,6 +11,7 @@
 #include "dbss/decoder/mesh.h"
 #include "dbss/encoder/creases.h"
 #include "dbss/encoder/control_mesh.h"
+#include "dbss/encoder/control_rounding.h"
 #include "dbss/encoder/levels.h"
 #include "dbss/encoder/outliers.h"
 #include "dbss/encoder/scan_check.h"
@@ -37,13 +38,23 @@ struct EncodeOptions {
   OutlierOptions outliers;  // removed before carving unless outliers.enabled is false
   ControlMeshOptions control;
   CreaseOptions creases;  // sharp features: tags and snapping (angle <= 0: off, a 1.0 file)
-  int control_bits = 0;  // Draco position bits of the control mesh, 8..30; 0: from the step (control_bits_for_step)
+  int control_bits = 0;  // Draco position bits of the control mesh, 8..30; 0: the encoder's rule (control_bits_from_level0)
   // With control.control_faces 0: also encode over a quarter of the default
   // faces and keep the better rate-distortion curve (encode.cpp,
   // choose_control; not above 2^18 points, where the second candidate
   // would cost about a whole encoding); false: the default face count, as
   // before issue 15.
   bool choose_control = true;
+  // Point path: each control vertex goes to the point of Draco's grid
+  // nearest its surface among those it can slide to (control_rounding.h);
+  // false: Draco's own rounding to the nearest point, as before issue 15's
+  // ninth session.  Off on a control mesh with crease tags (its vertices
+  // are snapped onto the feature lines).
+  bool round_along_surface = true;
+  // Point path, control_bits 0: Draco's bits from level 0's distance to the
+  // points (control_bits_for_error); false: from the step alone
+  // (control_bits_for_step), as before.
+  bool control_bits_from_level0 = true;
   uint32_t levels = 3;    // displacement levels, 0..kMaxLevelsInFormat, or kAutoLevels
   // Quantization: `step` (model units) when > 0, else derived from `error`
   // (largest rounding error relative to the bounding-box diagonal; step = 2 *
@@ -88,6 +99,7 @@ struct Encoding {
   double diagonal = 0;            // of the points' bounding box, model units
   float step = 0;                 // the quantization step of every level, model units (`step` or from `error`)
   int control_bits = 0;           // Draco position bits of the control mesh (given, or from the step)
+  ControlRounding rounding;       // where Draco's grid put the control vertices (round_along_surface)
   uint32_t level_count = 0;       // levels in the file (given, or auto_levels)
   double error = 0;               // the error target actually used (from `step` when given)
   std::string control_choice;     // which control mesh was kept and why (EncodeOptions::choose_control; `meta` control.choice)
