@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <cstring>
 #include <future>
 #include <system_error>
 
@@ -40,12 +41,16 @@ CellGrid make_grid(const PointCloud& pc, int grid, double shift) {
   // leak through those contacts.  The thin margin makes the occupied band
   // tight against 6-connected carving wherever the sampling is dense.
   constexpr double kReach = 0.3;
+  // Points lie two cells or more from the origin, where truncation is
+  // floor and much cheaper than std::floor without SSE4.1 (a fifth of the
+  // grid search was this loop); anything else takes std::floor.
+  const auto floor_int = [](double x) { return x >= 0 && x < 1e9 ? static_cast<int>(x) : static_cast<int>(std::floor(x)); };
   for (size_t i = 0; i < pc.size(); ++i) {
     int lo_c[3], hi_c[3];
     for (int a = 0; a < 3; ++a) {
       const double u = (pc.xyz[3 * i + a] - g.origin[a]) / g.cell;
-      lo_c[a] = std::clamp(static_cast<int>(std::floor(u - kReach)), 2, g.n[a] - 3);
-      hi_c[a] = std::clamp(static_cast<int>(std::floor(u + kReach)), 2, g.n[a] - 3);
+      lo_c[a] = std::clamp(floor_int(u - kReach), 2, g.n[a] - 3);
+      hi_c[a] = std::clamp(floor_int(u + kReach), 2, g.n[a] - 3);
     }
     for (int k = lo_c[2]; k <= hi_c[2]; ++k)
       for (int j = lo_c[1]; j <= hi_c[1]; ++j)
@@ -54,8 +59,9 @@ CellGrid make_grid(const PointCloud& pc, int grid, double shift) {
   return g;
 }
 
-// Everything in state `from` that face neighbours in state `from` connect
-// to a border cell turns to `to` (which must not occur in the grid yet).
+// The passable cells that face neighbours through passable cells connect
+// to a border cell (`pass`: bit rows, (nx + 63) / 64 words a row, row r =
+// k * ny + j; returned in the same layout).
 //
 // Rows of cells along x are bit sets: a reached cell reaches its whole run
 // of passable cells in its row at once (a few shifts per 64 cells), and a
@@ -65,22 +71,11 @@ CellGrid make_grid(const PointCloud& pc, int grid, double shift) {
 // breadth-first search finds (which it replaces: on the bunny 35k's grid
 // search, about 30 floods of up to 1.2M cells, 6 reads per cell and a
 // queue of 4 bytes per cell, freshly allocated each time).
-void flood_from_border(CellGrid& g, uint8_t from, uint8_t to) {
-  const int nx = g.n[0], ny = g.n[1], nz = g.n[2];
+std::vector<uint64_t> flood_bits(const std::array<int, 3>& n, const std::vector<uint64_t>& pass) {
+  const int nx = n[0], ny = n[1], nz = n[2];
   const size_t words = (size_t(nx) + 63) / 64;
-  const size_t rows = size_t(ny) * nz;  // row r = k * ny + j, its cells at r * nx
-  std::vector<uint64_t> pass(rows * words, 0), reached(rows * words, 0);
-  uint8_t* st = g.state.data();
-  for (size_t r = 0; r < rows; ++r) {
-    const uint8_t* row = st + r * size_t(nx);
-    uint64_t* p = &pass[r * words];
-    for (size_t w = 0; w < words; ++w) {
-      const int end = std::min(nx, int(64 * w + 64));
-      uint64_t bits = 0;
-      for (int i = int(64 * w); i < end; ++i) bits |= uint64_t{row[i] == from} << (i & 63);
-      p[w] = bits;
-    }
-  }
+  const size_t rows = size_t(ny) * nz;
+  std::vector<uint64_t> reached(rows * words, 0);
   // Grows row r's reached cells over their runs of passable ones: up the
   // row, then down, each a prefix scan (shifts of 1, 2, 4 .. 32) per word
   // with the end bit carried into the next word.
@@ -149,10 +144,80 @@ void flood_from_border(CellGrid& g, uint8_t from, uint8_t to) {
     if (k > 0) hand(r, r - ny);
     if (k + 1 < size_t(nz)) hand(r, r + ny);
   }
+  return reached;
+}
+
+// The cells of g in state `s` as bit rows (flood_bits' layout).
+std::vector<uint64_t> state_bits(const CellGrid& g, uint8_t s) {
+  constexpr uint64_t kOnes = 0x0101010101010101ull, kLow7 = 0x7f7f7f7f7f7f7f7full, kGather = 0x0102040810204080ull;
+  const int nx = g.n[0];
+  const size_t words = (size_t(nx) + 63) / 64, rows = size_t(g.n[1]) * g.n[2];
+  std::vector<uint64_t> bits(rows * words, 0);
   for (size_t r = 0; r < rows; ++r) {
-    uint8_t* row = st + r * size_t(nx);
-    for (size_t w = 0; w < words; ++w)
-      for (uint64_t b = reached[r * words + w]; b; b &= b - 1) row[64 * w + size_t(std::countr_zero(b))] = to;
+    const uint8_t* row = g.state.data() + r * size_t(nx);
+    uint64_t* b = &bits[r * words];
+    // Eight cells at a time: the bytes equal to s get their top bit
+    // (a zero-byte test on row ^ s), which a multiply gathers into eight
+    // consecutive bits (every partial product lands on its own bit).
+    int i = 0;
+    for (; i + 8 <= nx; i += 8) {
+      uint64_t x;
+      std::memcpy(&x, row + i, 8);
+      x ^= kOnes * s;
+      const uint64_t zero = ~(((x & kLow7) + kLow7) | x | kLow7);  // 0x80 in the bytes that were s
+      b[size_t(i) >> 6] |= (((zero >> 7) * kGather) >> 56) << (i & 63);
+    }
+    for (; i < nx; ++i) b[size_t(i) >> 6] |= uint64_t{row[i] == s} << (i & 63);
+  }
+  return bits;
+}
+
+// The 3x3x3 box dilation of bit rows (flood_bits' layout, nx cells a row):
+// a cell is set when it or one of its 26 neighbours is, one axis at a time.
+std::vector<uint64_t> box_dilate(const std::array<int, 3>& n, const std::vector<uint64_t>& in) {
+  const int nx = n[0], ny = n[1], nz = n[2];
+  const size_t words = (size_t(nx) + 63) / 64;
+  const uint64_t tail = (nx & 63) ? (uint64_t{1} << (nx & 63)) - 1 : ~uint64_t{0};
+  std::vector<uint64_t> x_grown(in.size()), out(in.size());
+  // Along x: bit i from bits i-1, i, i+1, carried across words; the bit
+  // past the row's last cell is cleared.
+  for (size_t r = 0; r < size_t(ny) * nz; ++r) {
+    const uint64_t* a = &in[r * words];
+    uint64_t* b = &x_grown[r * words];
+    for (size_t w = 0; w < words; ++w) {
+      const uint64_t prev = w > 0 ? a[w - 1] >> 63 : 0, next = w + 1 < words ? a[w + 1] << 63 : 0;
+      b[w] = a[w] | a[w] << 1 | prev | a[w] >> 1 | next;
+    }
+    b[words - 1] &= tail;
+  }
+  // Along y, then z.
+  for (int k = 0; k < nz; ++k)
+    for (int j = 0; j < ny; ++j) {
+      const size_t r = size_t(k) * ny + j;
+      for (size_t w = 0; w < words; ++w)
+        out[r * words + w] = x_grown[r * words + w] | (j > 0 ? x_grown[(r - 1) * words + w] : 0) |
+                             (j + 1 < ny ? x_grown[(r + 1) * words + w] : 0);
+    }
+  for (int k = 0; k < nz; ++k)
+    for (int j = 0; j < ny; ++j) {
+      const size_t r = size_t(k) * ny + j;
+      for (size_t w = 0; w < words; ++w)
+        x_grown[r * words + w] = out[r * words + w] | (k > 0 ? out[(r - ny) * words + w] : 0) |
+                                 (k + 1 < nz ? out[(r + ny) * words + w] : 0);
+    }
+  return x_grown;
+}
+
+// After filling: air that no longer reaches the outside is enclosed, so
+// solid (filled).
+void enclose_pockets(CellGrid& g) {
+  const int nx = g.n[0];
+  const size_t words = (size_t(nx) + 63) / 64, rows = size_t(g.n[1]) * g.n[2];
+  const std::vector<uint64_t> reached = flood_bits(g.n, state_bits(g, CellGrid::kAir));
+  for (size_t r = 0; r < rows; ++r) {
+    uint8_t* row = g.state.data() + r * size_t(nx);
+    for (int i = 0; i < nx; ++i)
+      if (row[i] == CellGrid::kAir && !(reached[r * words + size_t(i >> 6)] >> (i & 63) & 1)) row[i] = CellGrid::kFilled;
   }
 }
 
@@ -161,64 +226,32 @@ void flood_from_border(CellGrid& g, uint8_t from, uint8_t to) {
 // 2.1); the occupied cells it touches are the paper's set T, and Steps 4-5
 // grow S through occupied neighbours, which we do not need to store: the
 // shell is every face between air and a non-air cell.
-void carve_from_outside(CellGrid& g) {
-  for (auto& s : g.state)
-    if (s == CellGrid::kAir) s = CellGrid::kInside;
-  flood_from_border(g, CellGrid::kInside, CellGrid::kAir);
-}
-
-// After filling: air that no longer reaches the outside is enclosed, so
-// solid.  The air reached is marked with a state no cell has, then made
-// air again.
-void enclose_pockets(CellGrid& g) {
-  constexpr uint8_t kReached = 4;
-  flood_from_border(g, CellGrid::kAir, kReached);
-  for (uint8_t& st : g.state)
-    if (st == CellGrid::kAir) st = CellGrid::kFilled;
-    else if (st == kReached) st = CellGrid::kAir;
-}
-
+//
 // Carving through gaps of the sampling is stopped by a morphological
 // closing: carve against the occupancy grown to 3x3x3 blocks (bridging gaps
 // of up to two cells), then give back one layer: a grown-in cell without
 // points that touches that carving's air (26 neighbours) is air again.
+//
+// All of it on bit rows: the grown occupancy is the occupied cells' box
+// dilation (occupied cells lie two cells or more inside the border, so
+// growing them never reaches past it), the grown carving's air the cells
+// not grown that the border floods to, and the cells given back those
+// within one cell (26 neighbours) of that air: its box dilation.
 void carve_closed(CellGrid& g) {
-  CellGrid grown = g;
-  for (int k = 1; k + 1 < g.n[2]; ++k)
-    for (int j = 1; j + 1 < g.n[1]; ++j)
-      for (int i = 1; i + 1 < g.n[0]; ++i)
-        if (g.state[g.index(i, j, k)] == CellGrid::kOccupied)
-          for (int dk = -1; dk <= 1; ++dk)
-            for (int dj = -1; dj <= 1; ++dj)
-              for (int di = -1; di <= 1; ++di) grown.state[grown.index(i + di, j + dj, k + dk)] = CellGrid::kOccupied;
-  carve_from_outside(grown);
-  // Which cells have the grown carving's air among their 26 neighbours (or
-  // are air themselves): a 3x3x3 box dilation of the air, done one axis at
-  // a time (three reads per cell instead of up to 27).
-  const int nx = g.n[0], ny = g.n[1], nz = g.n[2];
-  const size_t sy = size_t(nx), sz = size_t(nx) * ny;
-  std::vector<uint8_t> near_air(grown.state.size()), along(grown.state.size());
-  for (size_t id = 0; id < grown.state.size(); ++id) near_air[id] = grown.state[id] == CellGrid::kAir;
-  // Along one axis (its stride, its number); the loops give each cell's
-  // coordinate on that axis without a division.
-  const auto dilate = [&](size_t stride, int axis) {
-    for (int k = 0; k < nz; ++k)
-      for (int j = 0; j < ny; ++j) {
-        const size_t row = size_t(k) * sz + size_t(j) * sy;
-        for (int i = 0; i < nx; ++i) {
-          const size_t id = row + size_t(i);
-          const int c = axis == 0 ? i : axis == 1 ? j : k;
-          along[id] = near_air[id] | (c > 0 ? near_air[id - stride] : 0) | (c + 1 < g.n[axis] ? near_air[id + stride] : 0);
-        }
-      }
-    near_air.swap(along);
-  };
-  dilate(1, 0);
-  dilate(sy, 1);
-  dilate(sz, 2);
-  for (size_t id = 0; id < g.state.size(); ++id) {
-    if (g.state[id] == CellGrid::kOccupied) continue;
-    g.state[id] = near_air[id] ? CellGrid::kAir : CellGrid::kInside;
+  const std::vector<uint64_t> grown = box_dilate(g.n, state_bits(g, CellGrid::kOccupied));
+  const int nx = g.n[0];
+  const size_t words = (size_t(nx) + 63) / 64, rows = size_t(g.n[1]) * g.n[2];
+  const uint64_t tail = (nx & 63) ? (uint64_t{1} << (nx & 63)) - 1 : ~uint64_t{0};
+  std::vector<uint64_t> pass(grown.size());
+  for (size_t r = 0; r < rows; ++r)
+    for (size_t w = 0; w < words; ++w) pass[r * words + w] = ~grown[r * words + w] & (w + 1 < words ? ~uint64_t{0} : tail);
+  const std::vector<uint64_t> near_air = box_dilate(g.n, flood_bits(g.n, pass));
+  for (size_t r = 0; r < rows; ++r) {
+    uint8_t* row = g.state.data() + r * size_t(nx);
+    for (int i = 0; i < nx; ++i) {
+      if (row[i] == CellGrid::kOccupied) continue;
+      row[i] = (near_air[r * words + size_t(i >> 6)] >> (i & 63) & 1) ? CellGrid::kAir : CellGrid::kInside;
+    }
   }
   enclose_pockets(g);
 }
@@ -236,10 +269,7 @@ size_t fill_critical(CellGrid& g) {
   // operations per 64 blocks, where reading its eight cells was a third of
   // the grid search's time.
   const size_t words = (size_t(nx) + 63) / 64;
-  std::vector<uint64_t> air_bits(size_t(ny) * nz * words, 0);
-  for (size_t r = 0; r < size_t(ny) * nz; ++r)
-    for (int i = 0; i < nx; ++i)
-      air_bits[r * words + size_t(i >> 6)] |= uint64_t{g.state[r * size_t(nx) + size_t(i)] == CellGrid::kAir} << (i & 63);
+  std::vector<uint64_t> air_bits = state_bits(g, CellGrid::kAir);
   auto air = [&](int i, int j, int k) { return g.state[g.index(i, j, k)] == CellGrid::kAir; };
   auto fill = [&](int i, int j, int k) {
     g.state[g.index(i, j, k)] = CellGrid::kFilled;
@@ -355,41 +385,49 @@ CarvingShape carving_shape(const CellGrid& g) {
   // Euler characteristic of the union of the solid cells as closed cubes:
   // count each vertex, edge, face and cube of the cell complex once.  A
   // lattice point (or edge, face) belongs to the union if any solid cell
-  // contains it.
-  // The solid cells with one layer of air around them, so the 8 cells
-  // around every lattice point are read without range checks.
-  const int px = g.n[0] + 2, py = g.n[1] + 2, pz = g.n[2] + 2;
-  std::vector<uint8_t> padded(size_t(px) * py * pz, 0);
-  for (int k = 0; k < g.n[2]; ++k)
-    for (int j = 0; j < g.n[1]; ++j)
-      for (int i = 0; i < g.n[0]; ++i)
-        padded[(size_t(k + 1) * py + j + 1) * px + i + 1] = g.state[g.index(i, j, k)] != CellGrid::kAir;
-  auto solid = [&](int i, int j, int k) { return padded[(size_t(k + 1) * py + j + 1) * px + i + 1] != 0; };
-  int64_t v = 0, e = 0, f = 0, c = 0;
-  for (int k = 0; k <= g.n[2]; ++k)
-    for (int j = 0; j <= g.n[1]; ++j)
-      for (int i = 0; i <= g.n[0]; ++i) {
-        // Cells around lattice point (i, j, k) are (i-1..i, j-1..j, k-1..k).
-        bool s[2][2][2];
-        bool any = false;
-        for (int dk = 0; dk < 2; ++dk)
-          for (int dj = 0; dj < 2; ++dj)
-            for (int di = 0; di < 2; ++di) any |= (s[dk][dj][di] = solid(i - 1 + di, j - 1 + dj, k - 1 + dk));
-        if (!any) continue;
-        ++v;
-        // The edges from this point in +x, +y, +z: each touched by 4 cells.
-        if (s[0][0][1] || s[0][1][1] || s[1][0][1] || s[1][1][1]) ++e;  // +x: cells with di = 1
-        if (s[0][1][0] || s[0][1][1] || s[1][1][0] || s[1][1][1]) ++e;  // +y: dj = 1
-        if (s[1][0][0] || s[1][0][1] || s[1][1][0] || s[1][1][1]) ++e;  // +z: dk = 1
-        // The faces from this point in +xy, +xz, +yz: each touched by 2 cells.
-        if (s[0][1][1] || s[1][1][1]) ++f;  // xy face: di = 1, dj = 1
-        if (s[1][0][1] || s[1][1][1]) ++f;  // xz: di = 1, dk = 1
-        if (s[1][1][0] || s[1][1][1]) ++f;  // yz: dj = 1, dk = 1
-        if (s[1][1][1]) ++c;
-      }
-  out.euler = v - e + f - c;
+  // contains it.  Lattice point (i, j, k) has cells (i-1..i, j-1..j,
+  // k-1..k) around it; with the solid cells of a row of cells as bits, a
+  // row of lattice points counts its points, edges and faces by popcounts
+  // of a few ORs of the four cell rows around it (bit i of R | R << 1:
+  // cell i-1 or i of row R), where reading the 8 cells around every point
+  // was 13% of the grid search.
+  const int nx = g.n[0], ny = g.n[1], nz = g.n[2];
+  const size_t words = (size_t(nx) + 1 + 63) / 64;  // lattice points 0..nx along a row
+  std::vector<uint64_t> bits((size_t(ny) * nz + 1) * words, 0);  // the last row: all air, for rows outside the grid
   size_t inside = 0;
-  for (uint8_t st : g.state) inside += st == CellGrid::kInside || st == CellGrid::kFilled;
+  for (size_t r = 0; r < size_t(ny) * nz; ++r) {
+    const uint8_t* row = g.state.data() + r * size_t(nx);
+    uint64_t* b = &bits[r * words];
+    for (int i = 0; i < nx; ++i) {
+      b[size_t(i) >> 6] |= uint64_t{row[i] != CellGrid::kAir} << (i & 63);
+      inside += row[i] == CellGrid::kInside || row[i] == CellGrid::kFilled;
+    }
+  }
+  const uint64_t* none = &bits[size_t(ny) * nz * words];
+  const auto cells = [&](int j, int k) {
+    return j < 0 || k < 0 || j >= ny || k >= nz ? none : &bits[(size_t(k) * ny + j) * words];
+  };
+  int64_t v = 0, e = 0, f = 0, c = 0;
+  for (int k = 0; k <= nz; ++k)
+    for (int j = 0; j <= ny; ++j) {
+      // The cell rows at (j-1, k-1), (j, k-1), (j-1, k) and (j, k).
+      const uint64_t *a = cells(j - 1, k - 1), *b = cells(j, k - 1), *cc = cells(j - 1, k), *d = cells(j, k);
+      uint64_t carry_all = 0, carry_bd = 0, carry_cd = 0, carry_d = 0;
+      // R | R << 1 across words, each with its own carry.
+      const auto spread = [](uint64_t x, uint64_t& carry) {
+        const uint64_t out = x | x << 1 | carry;
+        carry = x >> 63;
+        return out;
+      };
+      for (size_t w = 0; w < words; ++w) {
+        const uint64_t all = a[w] | b[w] | cc[w] | d[w], bd = b[w] | d[w], cd = cc[w] | d[w];
+        v += std::popcount(spread(all, carry_all));
+        e += std::popcount(all) + std::popcount(spread(bd, carry_bd)) + std::popcount(spread(cd, carry_cd));  // +x, +y, +z
+        f += std::popcount(bd) + std::popcount(cd) + std::popcount(spread(d[w], carry_d));  // xy, xz, yz
+        c += std::popcount(d[w]);
+      }
+    }
+  out.euler = v - e + f - c;
   out.inside_volume = static_cast<double>(inside) * g.cell * g.cell * g.cell;
   return out;
 }
