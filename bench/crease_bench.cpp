@@ -13,10 +13,17 @@
 //   --against-no-collapse: the 'off' columns are creases on without the alignment's collapses
 //     (CreaseOptions::collapse), the 'on' columns with them (with --collapse): before/after in one run
 //   --against-no-relax: likewise without the flat faces' relaxation (CreaseOptions::relax)
-//   --against-relax-beside: 'off' = the defaults, 'on' = with the flat vertices beside a line relaxed too
-//     (CreaseOptions::relax_beside_lines, off by default)
+//   --against-relax-beside: 'off' = without the flat vertices beside a line relaxed, 'on' = with them
+//     (CreaseOptions::relax_beside_lines)
+//   --against-no-valence-flips: likewise without the flips toward valence 6 beside the lines
+//     (CreaseOptions::valence_flips), the relaxation after them, untag_flat and relax_beside_lines:
+//     the ninth session's before/after (its 'off' columns are main's defaults at 8722690)
+//   CREASE_BENCH_AFTER="vflips=0 beside=1 relax_after=0 untag_flat=1" (environment): the 'on' run's
+//     valence_flips, relax_beside_lines and relax_after_flips set so, for trying combinations
 //   --against-no-wedge: likewise without the wedge sampling next to creases (CreaseOptions::wedge)
 //   --against-no-wedge-gate: likewise with the wedge anywhere, not only near tagged edges (CreaseOptions::wedge_gate)
+//   --seed S: the point sampling's seed (default 1): crease figures swing with it (and with
+//     QEM's tie order), so judge a change over several
 //   --fixed-control: the default face count, not chosen by rate-distortion (EncodeOptions::choose_control)
 //   --no-shape: without the control mesh's shaping pass (edge flips, relaxation)
 //   CREASE_BENCH_DUMP=DIR (environment): each level written to DIR/SHAPE-{on,off}-L.off and
@@ -97,15 +104,16 @@ struct Run {
 
 int main(int argc, char** argv) {
   size_t points = 40000, samples = 200000;
-  uint32_t levels = 4;
+  uint32_t levels = 4, seed = 1;
   double angle = 30;
   std::vector<std::string> shapes;
-  bool skip_absent = false, shaping = true, split = false, against_no_collapse = false, against_no_wedge = false, against_no_relax = false, against_beside = false, against_no_gate = false, fixed_control = false, collapse = false;
+  bool skip_absent = false, shaping = true, split = false, against_no_collapse = false, against_no_wedge = false, against_no_relax = false, against_beside = false, against_no_gate = false, against_no_vflips = false, fixed_control = false, collapse = false;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--points" && i + 1 < argc) points = std::strtoull(argv[++i], nullptr, 10);
     else if (a == "--levels" && i + 1 < argc) levels = static_cast<uint32_t>(std::atoi(argv[++i]));
     else if (a == "--angle" && i + 1 < argc) angle = std::atof(argv[++i]);
+    else if (a == "--seed" && i + 1 < argc) seed = static_cast<uint32_t>(std::strtoul(argv[++i], nullptr, 10));
     else if (a == "--samples" && i + 1 < argc) samples = std::strtoull(argv[++i], nullptr, 10);
     else if (a == "--skip-absent") skip_absent = true;
     else if (a == "--no-shape") shaping = false;
@@ -116,6 +124,7 @@ int main(int argc, char** argv) {
     else if (a == "--against-no-relax") against_no_relax = true;
     else if (a == "--against-relax-beside") against_beside = true;
     else if (a == "--against-no-wedge-gate") against_no_gate = true;
+    else if (a == "--against-no-valence-flips") against_no_vflips = true;
     else if (a == "--collapse") collapse = true;
     else if (!a.empty() && a[0] == '-') return std::fprintf(stderr, "crease_bench: unknown option %s\n", a.c_str()), 1;
     else shapes.push_back(a);
@@ -123,9 +132,9 @@ int main(int argc, char** argv) {
   if (shapes.empty() || points < 100 || levels > 6 || samples < 2 || !(angle > 0))
     return std::fprintf(stderr, "usage: crease_bench [--points N>=100] [--levels 0..6] [--angle DEG] SHAPE...\n"), 1;
   const char* ci = std::getenv("CI");
-  std::printf("%zu points per shape, crease angle %g; error: two-sided mean / Hausdorff distance to the true mesh "
+  std::printf("%zu points per shape (seed %u), crease angle %g; error: two-sided mean / Hausdorff distance to the true mesh "
               "over its diagonal\n\n",
-              points, angle);
+              points, seed, angle);
   for (const std::string& name : shapes) {
     dbss::TriangleMesh truth;
     if (name == "cube") truth = dbss::test::cube();
@@ -146,14 +155,14 @@ int main(int argc, char** argv) {
     const double diag = diagonal(truth);
     const std::string shape = std::filesystem::path(name).stem().string();
     const double true_length = crease_length(truth, dbss::test::creases_from_dihedral(truth, angle));
-    const std::vector<double> p = dbss::sample_surface(truth, points, 1);
+    const std::vector<double> p = dbss::sample_surface(truth, points, seed);
     dbss::PointCloud pc;
     pc.xyz.assign(p.begin(), p.end());
     Run runs[2];
     for (int on = 0; on < 2; ++on) {
       dbss::EncodeOptions eo;
       eo.levels = levels;
-      const bool against = against_no_collapse || against_no_wedge || against_no_relax || against_beside || against_no_gate;
+      const bool against = against_no_collapse || against_no_wedge || against_no_relax || against_beside || against_no_gate || against_no_vflips;
       eo.creases.angle_degrees = on || against ? angle : 0;
       // 'on': the defaults (with --collapse, collapses too); 'off' with an
       // --against-no-X: the same less X.
@@ -161,8 +170,19 @@ int main(int argc, char** argv) {
       eo.creases.collapse = (defaults.collapse || collapse) && (on || !against_no_collapse);
       eo.creases.wedge = defaults.wedge && (on || !against_no_wedge);
       eo.creases.relax = defaults.relax && (on || !against_no_relax);
-      eo.creases.relax_beside_lines = defaults.relax_beside_lines || (on && against_beside);
+      eo.creases.relax_beside_lines = against_beside ? on != 0 : defaults.relax_beside_lines && (on || !against_no_vflips);
       eo.creases.wedge_gate = defaults.wedge_gate && (on || !against_no_gate);
+      eo.creases.valence_flips = defaults.valence_flips && (on || !against_no_vflips);
+      eo.creases.untag_flat = defaults.untag_flat && (on || !against_no_vflips);
+      if (const char* after = std::getenv("CREASE_BENCH_AFTER"); after != nullptr && on) {
+        const std::string a = after;
+        const auto flag = [&](const char* name, bool& b) {
+          const size_t at = a.find(std::string(name) + "=");
+          if (at != std::string::npos) b = a[at + std::string(name).size() + 1] == '1';
+        };
+        flag("vflips", eo.creases.valence_flips), flag("beside", eo.creases.relax_beside_lines);
+        flag("relax_after", eo.creases.relax_after_flips), flag("untag_flat", eo.creases.untag_flat);
+      }
       eo.control.shape.enabled = shaping;
       eo.creases.split = split;
       eo.choose_control = !fixed_control;
@@ -218,12 +238,12 @@ int main(int argc, char** argv) {
     }
     const Run& r = runs[1];
     std::printf("### %s\n", shape.c_str());
-    for (int on = against_no_collapse || against_no_wedge || against_no_relax || against_beside || against_no_gate ? 0 : 1; on < 2; ++on) {
+    for (int on = against_no_collapse || against_no_wedge || against_no_relax || against_beside || against_no_gate || against_no_vflips ? 0 : 1; on < 2; ++on) {
       const dbss::CreaseStats& s = runs[on].stats;
-      if (against_no_collapse || against_no_wedge || against_no_relax || against_beside || against_no_gate) std::printf("%s: ", on ? "after" : "before");
-      std::printf("aligned: %zu vertices moved onto feature lines, %zu merged into a neighbour on one, %zu flat-face moves, %zu edges flipped and %zu split along "
+      if (against_no_collapse || against_no_wedge || against_no_relax || against_beside || against_no_gate || against_no_vflips) std::printf("%s: ", on ? "after" : "before");
+      std::printf("aligned: %zu vertices moved onto feature lines, %zu merged into a neighbour on one, %zu flat-face moves, %zu flat edges flipped toward valence 6, %zu edges flipped and %zu split along "
                   "them, %zu chain edges; creases: %zu edges, %zu corners, %zu darts, feature length %.3f; tags %zu bytes\n",
-                  s.aligned, s.align_collapses, s.align_relaxed, s.align_flips, s.align_splits, s.chain_edges, s.creases, s.corners, s.darts,
+                  s.aligned, s.align_collapses, s.align_relaxed, s.align_valence_flips, s.align_flips, s.align_splits, s.chain_edges, s.creases, s.corners, s.darts,
                   runs[on].length / diag, runs[on].tag_bytes);
     }
     std::printf("control mesh: off: %s; on: %s\n", runs[0].choice.c_str(), runs[1].choice.c_str());

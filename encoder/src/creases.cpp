@@ -30,6 +30,15 @@ struct Plane {
   V3 point, normal;
 };
 
+V3 cross(const V3& a, const V3& b) { return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]}; }
+
+// Triangles (u, w, c) and (w, u, d) within 3 degrees of one plane.
+bool flat_pair(const V3& u, const V3& w, const V3& c, const V3& d) {
+  const V3 a = cross(sub(w, u), sub(c, u)), b = cross(sub(u, w), sub(d, w));
+  const double la = norm(a), lb = norm(b);
+  return la > 0 && lb > 0 && dot(a, b) > std::cos(3 * 3.14159265358979323846 / 180) * la * lb;
+}
+
 // RMS distance of the points from their plane.
 double rms(const PointPlane& p) { return std::sqrt(std::max(0.0, p.variance[0])); }
 
@@ -51,6 +60,7 @@ format::Creases find_creases(TriangleMesh& mesh, const PointIndex& points, const
   st.aligned = aligned.snapped, st.align_flips = aligned.flips, st.align_splits = aligned.splits;
   st.align_collapses = aligned.collapses;
   st.align_relaxed = aligned.relaxed;
+  st.align_valence_flips = aligned.valence_flips;
   auto built = build_topology(static_cast<uint32_t>(mesh.vertex_count()), mesh.triangles);
   if (!built.ok()) return out;
   const LevelTopology& t = built.value();
@@ -76,6 +86,11 @@ format::Creases find_creases(TriangleMesh& mesh, const PointIndex& points, const
     const V3 pc1 = at(mesh.positions, t.triangles[prev_half(h)]), pd = at(mesh.positions, t.triangles[prev_half(tw)]);
     const double len = norm(sub(pw, pu));
     if (!(len > 0)) continue;
+    // Its two triangles in one plane: the control mesh has no fold here,
+    // so the feature is beside this edge, not along it (the points within
+    // 0.6 of a short edge next to a line see both sides).  Tagged, it
+    // would be a spur with a dart at its end (CreaseOptions::untag_flat).
+    if (o.untag_flat && flat_pair(pu, pw, pc1, pd)) continue;
     const V3 dir = {(pw[0] - pu[0]) / len, (pw[1] - pu[1]) / len, (pw[2] - pu[2]) / len};
     const double radius = 0.6 * len;
     const float mid[3] = {float(0.5 * (pu[0] + pw[0])), float(0.5 * (pu[1] + pw[1])), float(0.5 * (pu[2] + pw[2]))};

@@ -22,6 +22,7 @@ struct AlignStats {
   size_t corner_vertices = 0;  // ... three planes
   size_t snapped = 0;          // vertices moved onto a line or corner
   size_t flips = 0;            // edges flipped to join two vertices of one line
+  size_t valence_flips = 0;    // flat edges beside a line flipped toward valence 6
   size_t splits = 0;           // edges split where a line crosses them
   size_t collapses = 0;        // vertices beside a line merged into their neighbour on it
   size_t relaxed = 0;          // moves of flat-face vertices towards their neighbours' mean, in the face

@@ -66,11 +66,26 @@ struct CreaseOptions {
   // butterfly's extraordinary rule there puts odd vertices past the line in
   // the face's plane (the cube: valence 8, neighbours 0.07-1.7 away, an odd
   // vertex 0.128 outside, its Hausdorff distance).  Only with `relax`, and
-  // only fans flat within 0.1 degree.  Off: measured (bench/crease_bench.md,
-  // eighth session) it lowers level 3's error on the cube (-58%, Hausdorff
-  // 3.22 -> 0.85%), roof (-27%) and anchor (-10%) but raises the fandisk's
-  // (+9%) and the cylinder's (+1%).
-  bool relax_beside_lines = false;
+  // only fans flat within 0.1 degree.  Alone it raised the fandisk's level 3
+  // 9% (eighth session, one seed); with valence_flips, over three sampling
+  // seeds, level 3's error falls on the cube, roof and fandisk
+  // (bench/crease_bench.md, ninth session).
+  bool relax_beside_lines = true;
+  // Flip the edges of flat faces beside a line toward valence 6 (a vertex
+  // on the line counts its triangles on that face's side, regular 3)
+  // (crease_align.cpp 3b): the surface is unchanged, the butterfly's
+  // stencils next to the line more regular.
+  bool valence_flips = true;
+  // Relax the flat faces once more after those flips (only with `relax`).
+  bool relax_after_flips = true;
+  // No tag on an edge whose two control triangles lie within 3 degrees of
+  // one plane (creases.cpp): the feature is beside it, not along it (the
+  // points within 0.6 of a short edge next to a line see both sides).  Off:
+  // it brings the tags near the truth (the cube: 76 -> 32 darts, 20 -> 10
+  // corners, length 8.52 -> 6.39 against 6.93 true, in diagonals) but level
+  // 3's error rose on the cylinder (+13% against +6%) and fandisk (-4%
+  // against -9%) at seed 1 (bench/crease_bench.md, ninth session).
+  bool untag_flat = false;
 };
 
 struct CreaseStats {
@@ -83,7 +98,7 @@ struct CreaseStats {
   double max_snap = 0;     // largest move, model units
   // The control mesh's alignment to the feature lines before the test
   // (crease_align.h): counts of its vertices moved and edges flipped.
-  size_t aligned = 0, align_flips = 0, align_splits = 0, align_collapses = 0, align_relaxed = 0;
+  size_t aligned = 0, align_flips = 0, align_valence_flips = 0, align_splits = 0, align_collapses = 0, align_relaxed = 0;
   size_t chain_edges = 0;  // tagged as joining two aligned vertices along their line
 };
 
