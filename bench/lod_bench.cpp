@@ -5,7 +5,7 @@
 // bounding-box diagonal (measure/mesh_distance).  Also: dbss's QEM against
 // meshoptimizer's simplifier for the control mesh.
 //
-//   lod_bench [--levels N] [--control-faces F] [--control-bits B] [--cut-holes H] [--errors E1,E2,..] [--samples N] [--detail] [--quick] [--no-search] [--dense-step-ratio R] [--no-boundary-values] [--skip-absent] MESH...
+//   lod_bench [--levels N] [--control-faces F] [--control-bits B] [--cut-holes H] [--errors E1,E2,..] [--samples N] [--detail] [--quick] [--no-search] [--dense-step-ratio R] [--no-boundary-values] [--rdo LAMBDA] [--rdo-from LEVEL] [--skip-absent] MESH...
 //
 // With no MESH: the libcgal-demo meshes under test-data/ (closed, with
 // holes, several components); --cut-holes H adds each mesh again with H
@@ -55,10 +55,21 @@ struct Args {
   bool quick = false;   // --quick: no simplifier comparison, no decode timing (for sweeps)
   bool no_search = false;  // --no-search: the equal-error table on the targets' grid only
   double dense_step_ratio = kMeshDenseStepRatio;  // --dense-step-ratio R (1: one step for every level)
+  double rdo_lambda = 0;        // --rdo L: RDO quantization with lambda L (squared steps per bit)
+  uint32_t rdo_first_level = 1;  // --rdo-from L
   bool boundary_values = true;  // --no-boundary-values: normal displacements only (format 1.2, no BDRY)
   uint32_t cut_holes = 0;  // also run each closed mesh with this many holes cut in it
   std::vector<std::string> meshes;
 };
+
+MeshEncodeOptions mesh_options(const Args& a) {
+  MeshEncodeOptions m;
+  m.dense_step_ratio = a.dense_step_ratio;
+  m.boundary_values = a.boundary_values;
+  m.rdo_lambda = a.rdo_lambda;
+  m.rdo_first_level = a.rdo_first_level;
+  return m;
+}
 
 double diagonal(const TriangleMesh& m) {
   float lo[3] = {m.positions[0], m.positions[1], m.positions[2]}, hi[3] = {lo[0], lo[1], lo[2]};
@@ -137,8 +148,8 @@ TriangleMesh cut_holes(const TriangleMesh& m, uint32_t count) {
 // direction (input to level: detail the level lacks; level to input: where
 // the level strays off the surface), both over the diagonal.
 void print_detail(const Encoding& en, const TriangleMesh& input, double diag, const MeshDistanceOptions& mo) {
-  std::printf("\n| level | odd | step / diag | LEVL bytes | bits / odd | zeros | abs(q) = 1 | clamped | cast missed | input to level | level to input | max |\n"
-              "|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+  std::printf("\n| level | odd | step / diag | LEVL bytes | bits / odd | zeros | abs(q) = 1 | clamped | cast missed | RDO lowered | input to level | level to input | max |\n"
+              "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (uint32_t l = 1; l <= en.level_count; ++l) {
     const LevelStats& st = en.levels.stats[l - 1];
     const auto& q = en.levels.levels[l - 1].q;
@@ -147,8 +158,8 @@ void print_detail(const Encoding& en, const TriangleMesh& input, double diag, co
     const TriangleMesh m{en.levels.positions[l], en.levels.triangles[l]};
     const MeshDistance d = mesh_distance(input, m, mo);
     const double n = st.odd ? double(st.odd) : 1.0;
-    std::printf("| %u | %zu | %.2e | %zu | %.2f | %.0f%% | %.0f%% | %zu | %zu | %.2e | %.2e | %.2e |\n", l, st.odd,
-                st.step / diag, st.bytes, 8.0 * st.bytes / n, 100 * zeros / n, 100 * ones / n, st.clamped, st.by_nearest,
+    std::printf("| %u | %zu | %.2e | %zu | %.2f | %.0f%% | %.0f%% | %zu | %zu | %zu | %.2e | %.2e | %.2e |\n", l, st.odd,
+                st.step / diag, st.bytes, 8.0 * st.bytes / n, 100 * zeros / n, 100 * ones / n, st.clamped, st.by_nearest, st.rdo_lowered,
                 d.a_to_b_mean / diag, d.b_to_a_mean / diag, d.max() / diag);
   }
 }
@@ -265,7 +276,7 @@ class TargetCurve {
     o.control_bits = args_.control_bits;
     o.error = target;
     o.threads = 2;
-    auto e = encode_mesh(input_, o, {args_.dense_step_ratio, args_.boundary_values});
+    auto e = encode_mesh(input_, o, mesh_options(args_));
     if (!e.ok()) return false;
     const Encoding& en = e.value().encoding;
     Point p;
@@ -362,7 +373,7 @@ int run_mesh(const std::string& path, const Args& args, uint32_t holes = 0) {
     o.error = err;
     o.threads = 2;
     auto t = Clock::now();
-    auto e = encode_mesh(input, o, {args.dense_step_ratio, args.boundary_values});
+    auto e = encode_mesh(input, o, mesh_options(args));
     const double enc_s = since(t);
     if (!e.ok()) {
       std::fprintf(stderr, "lod_bench: %s: %s\n", path.c_str(), e.status().to_string().c_str());
@@ -479,6 +490,8 @@ int main(int argc, char** argv) {
     else if (a == "--quick") args.quick = true;
     else if (a == "--no-search") args.no_search = true;
     else if (a == "--no-boundary-values") args.boundary_values = false;
+    else if (a == "--rdo" && i + 1 < argc) args.rdo_lambda = std::atof(argv[++i]);
+    else if (a == "--rdo-from" && i + 1 < argc) args.rdo_first_level = static_cast<uint32_t>(std::atoi(argv[++i]));
     else if (a == "--dense-step-ratio" && i + 1 < argc) args.dense_step_ratio = std::atof(argv[++i]);
     else if (a == "--errors" && i + 1 < argc) {
       args.errors.clear();
@@ -490,7 +503,7 @@ int main(int argc, char** argv) {
       }
     } else if (a == "--skip-absent") args.skip_absent = true;
     else if (!a.empty() && a[0] == '-') {
-      std::fprintf(stderr, "usage: lod_bench [--levels N] [--control-faces F] [--control-bits B] [--cut-holes H] [--errors E1,E2] [--samples N] [--detail] [--quick] [--no-search] [--dense-step-ratio R] [--no-boundary-values] [--skip-absent] MESH...\n");
+      std::fprintf(stderr, "usage: lod_bench [--levels N] [--control-faces F] [--control-bits B] [--cut-holes H] [--errors E1,E2] [--samples N] [--detail] [--quick] [--no-search] [--dense-step-ratio R] [--no-boundary-values] [--rdo LAMBDA] [--rdo-from LEVEL] [--skip-absent] MESH...\n");
       return 1;
     } else args.meshes.push_back(a);
   }

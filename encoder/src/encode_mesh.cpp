@@ -164,6 +164,8 @@ Result<MeshEncoding> encode_mesh(const TriangleMesh& mesh, const EncodeOptions& 
   lo.step = e.step;
   lo.zstd_level = o.effort;
   lo.threads = std::max(1u, o.threads);
+  lo.rdo_lambda = mo.rdo_lambda;
+  lo.rdo_first_level = mo.rdo_first_level;
   if (o.on_progress)
     lo.on_level = [&](uint32_t l) { o.on_progress("casting level " + std::to_string(l) + " of " + std::to_string(e.level_count)); };
   auto encoded = encode_levels(e.control, sampler, lo);

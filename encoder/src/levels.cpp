@@ -10,6 +10,7 @@
 #include "dbss/encoder/crease_align.h"
 #include "dbss/encoder/crease_lines.h"
 #include "dbss/encoder/quantize.h"
+#include "dbss/encoder/rdo_quantize.h"
 #include "dbss/encoder/sampling.h"
 #include "dbss/format/writer.h"
 
@@ -128,6 +129,11 @@ Result<EncodedLevels> encode_levels(const TriangleMesh& control, const LevelSamp
     if (!(step > 0) || !std::isfinite(step)) return Status(ErrorCode::invalid_argument, "a level's step must be finite and positive");
     std::vector<uint8_t> source(odd, 0xFF), clamped(odd, 0), fitted(odd, 0), wedge(odd, 0);
     std::vector<double> magnitude(odd, 0.0);
+    // With rate-distortion optimised quantization, each odd vertex's
+    // displacement over the step, and which ones must keep their rounding.
+    const bool rdo = o.rdo_lambda > 0 && l >= o.rdo_first_level && o.creases.empty();
+    std::vector<double> scaled(rdo ? odd : 0, 0.0);
+    std::vector<uint8_t> keep(rdo ? odd : 0, 1);
     // The decoder's own step: it computes each odd vertex's undisplaced
     // point and normal, this chooses q from them, and the vertex moves as a
     // decoder will move it (closed loop: later levels start from exactly
@@ -139,15 +145,36 @@ Result<EncodedLevels> encode_levels(const TriangleMesh& control, const LevelSamp
       const Sample s = sampler.sample(e, p, n, 0.5 * len);
       // A displacement within kSpreadDeadZone standard errors of the fit is
       // not told apart from the fit's own error (noise): stored as 0.
-      const Quantized q = quantize(s.distance, step, std::max(dead_zone, kSpreadDeadZone * s.spread / step));
+      const double zone = std::max(dead_zone, kSpreadDeadZone * s.spread / step);
+      const Quantized q = quantize(s.distance, step, zone);
       source[e] = static_cast<uint8_t>(s.source);
       fitted[e] = s.fitted;
       wedge[e] = s.wedge;
       // The format's range caps q too; counted with the sampler's clamps.
       clamped[e] = s.clamped || q.clamped;
       magnitude[e] = std::abs(s.distance);
+      if (rdo) {
+        scaled[e] = s.distance / step;
+        // Only plain rounding is weighed: a dead zone's or a clamp's value stays.
+        keep[e] = clamped[e] || zone != 0.5;
+      }
       return q.q;
     };
+    // With RDO, the level is first refined on a copy (the same points and
+    // normals: they depend only on the level being refined), every vertex
+    // sampled and rounded; the integers are then chosen over the whole
+    // level, and the real step moves each vertex by its chosen integer.
+    std::vector<int32_t> planned;
+    RdoStats rdo_stats;
+    if (rdo) {
+      auto dry = LevelRefiner::create(TriangleMesh{std::vector<float>(r.positions().begin(), r.positions().end()),
+                                                   std::vector<uint32_t>(r.triangles().begin(), r.triangles().end())});
+      if (!dry.ok()) return dry.status();
+      std::vector<int32_t> rounded;
+      dry.value().refine(choose, step, rounded, std::max(1u, o.threads));
+      planned = rdo_quantize(scaled, rounded, keep, o.rdo_lambda, 2, &rdo_stats);
+    }
+    const OddChooser chosen = [&](uint32_t e, const double*, const double*, const float*, const float*) { return planned[e]; };
     format::Level level;
     level.index = static_cast<uint8_t>(l);
     level.step = step;
@@ -164,10 +191,11 @@ Result<EncodedLevels> encode_levels(const TriangleMesh& control, const LevelSamp
       boundary_clamped += q.clamped;
       return q.q;
     };
+    const OddChooser& odd_choice = rdo ? chosen : choose;
     if (sampler.boundary)
-      r.refine(choose, step, level.q, bchoose, step, bq, std::max(1u, o.threads));
+      r.refine(odd_choice, step, level.q, bchoose, step, bq, std::max(1u, o.threads));
     else
-      r.refine(choose, step, level.q, std::max(1u, o.threads));
+      r.refine(odd_choice, step, level.q, std::max(1u, o.threads));
 
     LevelStats st;
     st.level = l;
@@ -184,6 +212,7 @@ Result<EncodedLevels> encode_levels(const TriangleMesh& control, const LevelSamp
       sum_abs += magnitude[e];
     }
     st.mean_abs_displacement = odd ? sum_abs / odd : 0;
+    st.rdo_lowered = rdo_stats.lowered;
 
     st.boundary_odd = bq.size();
     for (int32_t v : bq) st.boundary_moved += v != 0;

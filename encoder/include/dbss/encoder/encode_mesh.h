@@ -41,6 +41,10 @@ struct MeshEncodeOptions {
   // the surface, onto the input's boundary curve (a BDRY chunk per level
   // that moves any).  false: normal displacements only (a 1.2 file).
   bool boundary_values = true;
+  // Rate-distortion optimised quantization (LevelEncodeOptions::rdo_lambda,
+  // rdo_quantize.h) from level rdo_first_level on; 0: plain rounding.
+  double rdo_lambda = 0;
+  uint32_t rdo_first_level = 1;
 };
 
 // The vertex counts of levels 0..levels of a control mesh of `vertices`,

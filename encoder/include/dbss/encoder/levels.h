@@ -30,6 +30,11 @@ struct LevelEncodeOptions {
   format::Creases creases;  // the control mesh's crease tags (empty: none), as the file holds them
   bool wedge = true;        // with creases: CreaseOptions::wedge
   bool wedge_gate = true;   // ... only near a tagged edge: CreaseOptions::wedge_gate
+  // Rate-distortion optimised quantization (rdo_quantize.h) of levels
+  // rdo_first_level and finer, with this lambda in squared steps per bit;
+  // 0: plain rounding.  Not with creases.
+  double rdo_lambda = 0;
+  uint32_t rdo_first_level = 1;
 };
 
 struct LevelStats {
@@ -40,6 +45,7 @@ struct LevelStats {
   size_t fitted = 0;  // samples taken to the local surface fit (the rest: to the hit itself)
   size_t by_wedge = 0;  // of by_plane: from the two sides' planes next to a crease
   double mean_abs_displacement = 0;
+  size_t rdo_lowered = 0;  // values the RDO quantizer moved one step toward zero
   size_t bytes = 0;  // LEVL chunk data
   // Format 1.3: boundary odd vertices, those with a non-zero in-surface
   // value, those whose in-surface value was clamped, and the BDRY chunk's
