@@ -176,6 +176,7 @@ Result<MeshEncoding> encode_mesh(const TriangleMesh& mesh, const EncodeOptions& 
   c.header.error_target = static_cast<float>(e.error);
   c.levels = e.levels.levels;
   c.level_data = e.levels.chunks;
+  c.boundary_data = e.levels.boundary_chunks;  // compressed once, when each BDRY's coding was chosen
   c.header.version_minor = format::minimum_version_minor(c);
   char error_text[32];
   std::snprintf(error_text, sizeof error_text, "%g", e.error);

@@ -18,6 +18,7 @@
 #include "dbss/encoder/encode_mesh.h"
 #include "dbss/encoder/mesh_info.h"
 #include "dbss/encoder/mesh_input.h"
+#include "dbss/format/writer.h"
 #include "dbss/io/geometry_files.h"
 #include "dbss/measure/mesh_distance.h"
 
@@ -364,6 +365,43 @@ TEST_CASE("mesh input: boundary odd vertices land on the input's boundary curve 
   const MeshInfo want = mesh_counts(input);
   const TriangleMesh finest{a.levels.positions.back(), a.levels.triangles.back()};
   CHECK(mesh_info(finest).boundary_loops == want.boundary_loops);
+}
+
+// Each level's BDRY is compressed once per coding to choose one; the
+// chosen bytes go to the writer (FileContents::boundary_data) instead of
+// being compressed a fourth time.  Same file either way; data that is not
+// the level's is refused.
+TEST_CASE("mesh input: BDRY chunks are written from the bytes chosen, not compressed again", "[mesh_input]") {
+  const TriangleMesh input = sphere_with_holes(24, 48);
+  EncodeOptions o;
+  o.levels = 2;
+  o.error = 1e-4;
+  auto r = encode_mesh(input, o);
+  REQUIRE(r.ok());
+  const Encoding& e = r.value().encoding;
+  REQUIRE(e.levels.boundary_chunks.size() == e.contents.levels.size());
+  size_t kept = 0;
+  for (size_t i = 0; i < e.contents.levels.size(); ++i) {
+    const format::Level& level = e.contents.levels[i];
+    CHECK(level.boundary.empty() == e.levels.boundary_chunks[i].empty());
+    if (level.boundary.empty()) continue;
+    ++kept;
+    auto again = format::encode_boundary(level, o.effort);
+    REQUIRE(again.ok());
+    CHECK(again.value() == e.levels.boundary_chunks[i]);
+  }
+  REQUIRE(kept > 0);
+  format::FileContents c = e.contents;
+  REQUIRE(!c.boundary_data.empty());
+  c.boundary_data.clear();
+  auto plain = format::serialize_with_toc(c, {o.effort});
+  REQUIRE(plain.ok());
+  CHECK(plain.value().bytes == e.bytes);
+  // Another level's data is refused.
+  c = e.contents;
+  for (size_t i = 0; i < c.levels.size(); ++i)
+    if (!c.boundary_data[i].empty()) c.boundary_data[i][0] ^= 0x7F;  // the level index field
+  CHECK(format::serialize_with_toc(c, {o.effort}).status().code() == ErrorCode::invalid_argument);
 }
 
 TEST_CASE("mesh input: a closed mesh's file does not change with boundary values on", "[mesh_input]") {
