@@ -85,7 +85,7 @@ TEST_CASE("hole budget: a loop needs the vertices its curve's sagitta asks for",
   CHECK(loop_vertices_needed(p, {0, 1, 2}, 1e-6) == 3);
 }
 
-TEST_CASE("hole budget: closed meshes keep the closed budget; holes add faces by their curve", "[hole_budget]") {
+TEST_CASE("hole budget: closed meshes keep the closed budget, holes add faces by their curve", "[hole_budget]") {
   const TriangleMesh closed = test::uv_sphere(24, 32);
   const HoleBudget c = hole_budget(closed, 0);
   CHECK(c.faces == default_control_faces(static_cast<uint32_t>(closed.triangle_count()), 0));
