@@ -5,7 +5,7 @@
 // bounding-box diagonal (measure/mesh_distance).  Also: dbss's QEM against
 // meshoptimizer's simplifier for the control mesh.
 //
-//   lod_bench [--levels N] [--control-faces F] [--control-bits B] [--cut-holes H] [--errors E1,E2,..] [--samples N] [--detail] [--quick] [--no-search] [--dense-step-ratio R] [--no-boundary-values] [--rdo LAMBDA] [--rdo-from LEVEL] [--skip-absent] MESH...
+//   lod_bench [--levels N] [--control-faces F] [--control-bits B] [--cut-holes H] [--hole-radius R] [--cut-only] [--loop-faces N] [--hole-tolerance T] [--hole-faces-per-vertex C] [--errors E1,E2,..] [--samples N] [--detail] [--quick] [--no-search] [--dense-step-ratio R] [--no-boundary-values] [--rdo LAMBDA] [--rdo-from LEVEL] [--skip-absent] MESH...
 //
 // With no MESH: the libcgal-demo meshes under test-data/ (closed, with
 // holes, several components); --cut-holes H adds each mesh again with H
@@ -26,6 +26,7 @@
 #include "dbss/decoder/control_mesh.h"
 #include "dbss/decoder/progressive.h"
 #include "dbss/encoder/encode_mesh.h"
+#include "dbss/encoder/hole_budget.h"
 #include "dbss/encoder/mesh_info.h"
 #include "dbss/encoder/mesh_input.h"
 #include "dbss/encoder/simplify.h"
@@ -59,6 +60,13 @@ struct Args {
   uint32_t rdo_first_level = 1;  // --rdo-from L
   bool boundary_values = true;  // --no-boundary-values: normal displacements only (format 1.2, no BDRY)
   uint32_t cut_holes = 0;  // also run each closed mesh with this many holes cut in it
+  double hole_radius = 0.04;  // --hole-radius R: the cut holes' radius over the diagonal
+  bool cut_only = false;      // --cut-only: with --cut-holes, only the meshes with holes cut
+  // The control budget: --loop-faces N, the fourth session's rule
+  // (max(default, N per boundary loop)); --hole-tolerance T and
+  // --hole-faces-per-vertex C, hole_budget with other constants.
+  uint32_t loop_faces = 0;
+  double hole_tolerance = kHoleTolerance, hole_faces_per_vertex = kHoleFacesPerVertex;
   std::vector<std::string> meshes;
 };
 
@@ -122,10 +130,10 @@ std::string topo(const MeshInfo& i) {
   return std::to_string(i.components) + " cc, genus " + std::to_string(i.genus) + ", " + std::to_string(i.boundary_loops) + " loops";
 }
 
-// `count` holes cut in a mesh: the triangles with a corner within 4% of the
+// `count` holes cut in a mesh: the triangles with a corner within `radius` (4%) of the
 // diagonal of vertices spread through the vertex list, removed.
-TriangleMesh cut_holes(const TriangleMesh& m, uint32_t count) {
-  const double r2 = std::pow(0.04 * diagonal(m), 2);
+TriangleMesh cut_holes(const TriangleMesh& m, uint32_t count, double radius) {
+  const double r2 = std::pow(radius * diagonal(m), 2);
   std::vector<uint8_t> gone(m.vertex_count(), 0);
   for (uint32_t k = 1; k <= count; ++k) {
     const size_t seed = m.vertex_count() * k / (count + 1);
@@ -300,13 +308,13 @@ class TargetCurve {
   double seconds_ = 0;
 };
 
-int run_mesh(const std::string& path, const Args& args, uint32_t holes = 0) {
+int run_mesh(const std::string& path, Args args, uint32_t holes = 0) {
   auto read = read_mesh(path);
   if (!read.ok()) {
     std::fprintf(stderr, "lod_bench: %s\n", read.status().message().c_str());
     return 1;
   }
-  if (holes) read.value() = cut_holes(read.value(), holes);
+  if (holes) read.value() = cut_holes(read.value(), holes, args.hole_radius);
   auto prepared = prepare_mesh_input(read.value());
   if (!prepared.ok()) {
     std::fprintf(stderr, "lod_bench: %s: %s\n", path.c_str(), prepared.status().message().c_str());
@@ -324,9 +332,22 @@ int run_mesh(const std::string& path, const Args& args, uint32_t holes = 0) {
               topo(info).c_str());
 
   // The control mesh's simplifier: dbss's QEM against meshoptimizer's.
-  const uint32_t target = args.control_faces ? args.control_faces
-                                             : mesh_control_faces(static_cast<uint32_t>(input.triangle_count()), info.genus,
-                                                                  info.boundary_loops);
+  const HoleBudget budget = hole_budget(input, info.genus, args.hole_tolerance, args.hole_faces_per_vertex);
+  if (!args.control_faces && args.loop_faces)
+    args.control_faces = std::max<uint32_t>(default_control_faces(static_cast<uint32_t>(input.triangle_count()), info.genus),
+                                            args.loop_faces * info.boundary_loops) & ~1u;
+  else if (!args.control_faces && budget.faces != mesh_control_faces(input, info.genus))
+    args.control_faces = budget.faces;
+  const uint32_t target = args.control_faces ? args.control_faces : mesh_control_faces(input, info.genus);
+  std::printf("\ncontrol budget: %u faces (closed budget %u, its edge %.2e of the diagonal; %zu loops", target,
+              budget.closed_faces, budget.edge_length / diag, budget.loop_vertices.size());
+  if (!budget.loop_vertices.empty()) {
+    uint64_t sum = 0;
+    uint32_t most = 0;
+    for (uint32_t n : budget.loop_vertices) sum += n, most = std::max(most, n);
+    std::printf(", rim vertices needed %llu, at most %u a loop", static_cast<unsigned long long>(sum), most);
+  }
+  std::printf(")\n");
   if (!args.quick) {
   std::printf("\ncontrol mesh simplifier, target %u triangles:\n\n", target);
   std::printf("| simplifier | ms | triangles | topology | error |\n|---|---|---|---|---|\n");
@@ -483,6 +504,11 @@ int main(int argc, char** argv) {
     const std::string a = argv[i];
     if (a == "--levels" && i + 1 < argc) args.levels = static_cast<uint32_t>(std::atoi(argv[++i]));
     else if (a == "--cut-holes" && i + 1 < argc) args.cut_holes = static_cast<uint32_t>(std::atoi(argv[++i]));
+    else if (a == "--hole-radius" && i + 1 < argc) args.hole_radius = std::atof(argv[++i]);
+    else if (a == "--cut-only") args.cut_only = true;
+    else if (a == "--loop-faces" && i + 1 < argc) args.loop_faces = static_cast<uint32_t>(std::atoi(argv[++i]));
+    else if (a == "--hole-tolerance" && i + 1 < argc) args.hole_tolerance = std::atof(argv[++i]);
+    else if (a == "--hole-faces-per-vertex" && i + 1 < argc) args.hole_faces_per_vertex = std::atof(argv[++i]);
     else if (a == "--control-faces" && i + 1 < argc) args.control_faces = static_cast<uint32_t>(std::atoi(argv[++i]));
     else if (a == "--samples" && i + 1 < argc) args.samples = static_cast<size_t>(std::atol(argv[++i]));
     else if (a == "--control-bits" && i + 1 < argc) args.control_bits = std::atoi(argv[++i]);
@@ -503,7 +529,7 @@ int main(int argc, char** argv) {
       }
     } else if (a == "--skip-absent") args.skip_absent = true;
     else if (!a.empty() && a[0] == '-') {
-      std::fprintf(stderr, "usage: lod_bench [--levels N] [--control-faces F] [--control-bits B] [--cut-holes H] [--errors E1,E2] [--samples N] [--detail] [--quick] [--no-search] [--dense-step-ratio R] [--no-boundary-values] [--rdo LAMBDA] [--rdo-from LEVEL] [--skip-absent] MESH...\n");
+      std::fprintf(stderr, "usage: lod_bench [--levels N] [--control-faces F] [--control-bits B] [--cut-holes H] [--hole-radius R] [--cut-only] [--loop-faces N] [--hole-tolerance T] [--hole-faces-per-vertex C] [--errors E1,E2] [--samples N] [--detail] [--quick] [--no-search] [--dense-step-ratio R] [--no-boundary-values] [--rdo LAMBDA] [--rdo-from LEVEL] [--skip-absent] MESH...\n");
       return 1;
     } else args.meshes.push_back(a);
   }
@@ -517,7 +543,7 @@ int main(int argc, char** argv) {
     }
   int rc = 0;
   for (const std::string& m : args.meshes) {
-    rc = std::max(rc, run_mesh(m, args));
+    if (!(args.cut_only && args.cut_holes)) rc = std::max(rc, run_mesh(m, args));
     if (args.cut_holes) rc = std::max(rc, run_mesh(m, args, args.cut_holes));
   }
   return rc;

@@ -10,6 +10,7 @@
 #include "dbss/decoder/control_mesh.h"
 #include "dbss/decoder/topology.h"
 #include "dbss/encoder/control_mesh_codec.h"
+#include "dbss/encoder/hole_budget.h"
 #include "dbss/encoder/quantize.h"
 #include "dbss/encoder/simplify.h"
 #include "dbss/format/writer.h"
@@ -32,11 +33,7 @@ std::vector<uint64_t> level_vertex_counts(uint64_t vertices, uint64_t edges, uin
   return r;
 }
 
-uint32_t mesh_control_faces(uint32_t input_faces, int64_t genus, uint64_t boundary_loops) {
-  const uint64_t loops = uint64_t{kControlFacesPerLoop} * boundary_loops;
-  return static_cast<uint32_t>(std::min<uint64_t>(std::max<uint64_t>(default_control_faces(input_faces, genus), loops),
-                                                  UINT32_MAX - 1)) & ~1u;
-}
+uint32_t mesh_control_faces(const TriangleMesh& mesh, int64_t genus) { return hole_budget(mesh, genus).faces; }
 
 Result<MeshEncoding> encode_mesh(const TriangleMesh& mesh, const EncodeOptions& o, const MeshEncodeOptions& mo) {
   if (o.control_bits != 0 && (o.control_bits < 8 || o.control_bits > 30))
@@ -62,8 +59,7 @@ Result<MeshEncoding> encode_mesh(const TriangleMesh& mesh, const EncodeOptions& 
   if (o.on_progress) o.on_progress("simplifying");
   const uint32_t target = o.control.control_faces
                               ? o.control.control_faces
-                              : mesh_control_faces(static_cast<uint32_t>(in.triangle_count()), me.input_info.genus,
-                                                   me.input_info.boundary_loops);
+                              : mesh_control_faces(in, me.input_info.genus);
   auto control = control_mesh_from_mesh(in, surface, target, &me.control_stats);
   if (!control.ok()) return control.status();
   e.stages.control = std::move(control).value();
@@ -178,6 +174,7 @@ Result<MeshEncoding> encode_mesh(const TriangleMesh& mesh, const EncodeOptions& 
   c.header.error_target = static_cast<float>(e.error);
   c.levels = e.levels.levels;
   c.level_data = e.levels.chunks;
+  c.boundary_data = e.levels.boundary_chunks;  // compressed once, when each BDRY's coding was chosen
   c.header.version_minor = format::minimum_version_minor(c);
   char error_text[32];
   std::snprintf(error_text, sizeof error_text, "%g", e.error);

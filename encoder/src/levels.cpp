@@ -217,21 +217,23 @@ Result<EncodedLevels> encode_levels(const TriangleMesh& control, const LevelSamp
     st.boundary_odd = bq.size();
     for (int32_t v : bq) st.boundary_moved += v != 0;
     st.boundary_clamped = boundary_clamped;  // (apart: clamped counts odd vertices)
+    std::vector<uint8_t> boundary_chunk;
     if (st.boundary_moved) {
       // The smallest coding, the older ones on a tie (as choose_coding).
       level.boundary.step = step;
       level.boundary.q = std::move(bq);
-      size_t best = SIZE_MAX;
+      // Its bytes are kept for the writer (compressed once per coding).
       format::DisplacementCoding best_coding = format::DisplacementCoding::varint;
       for (auto coding : {format::DisplacementCoding::byte_planes, format::DisplacementCoding::varint,
                           format::DisplacementCoding::context}) {
         level.boundary.coding = coding;
         auto data = format::encode_boundary(level, o.zstd_level);
         if (!data.ok()) return data.status();
-        if (data.value().size() < best) best = data.value().size(), best_coding = coding;
+        if (boundary_chunk.empty() || data.value().size() < boundary_chunk.size())
+          boundary_chunk = std::move(data).value(), best_coding = coding;
       }
       level.boundary.coding = best_coding;
-      st.boundary_bytes = best;
+      st.boundary_bytes = boundary_chunk.size();
     }
 
     auto chunk = choose_coding(level, o.zstd_level);
@@ -239,6 +241,7 @@ Result<EncodedLevels> encode_levels(const TriangleMesh& control, const LevelSamp
     st.bytes = chunk.value().size();
     st.coding = level.coding;
     out.chunks.push_back(std::move(chunk).value());
+    out.boundary_chunks.push_back(std::move(boundary_chunk));
 
     out.positions.emplace_back(r.positions().begin(), r.positions().end());
     out.triangles.emplace_back(r.triangles().begin(), r.triangles().end());

@@ -202,6 +202,9 @@ Result<SerializedFile> serialize_with_toc(const FileContents& c, const WriteOpti
   if (!c.level_data.empty() && c.level_data.size() != c.levels.size())
     return bad(std::to_string(c.level_data.size()) + " levels' chunk data for " + std::to_string(c.levels.size()) +
                " levels");
+  if (!c.boundary_data.empty() && c.boundary_data.size() != c.levels.size())
+    return bad(std::to_string(c.boundary_data.size()) + " levels' boundary chunk data for " +
+               std::to_string(c.levels.size()) + " levels");
 
   std::vector<RawChunk> body;
   body.push_back({kCtrl, encode_control(c.control_codec, c.control_mesh)});
@@ -236,9 +239,25 @@ Result<SerializedFile> serialize_with_toc(const FileContents& c, const WriteOpti
         return bad("level " + std::to_string(i + 1) + " has " + std::to_string(level.boundary.q.size()) +
                    " boundary values; the level before has " + std::to_string(boundary.value_or(0)) +
                    " boundary edges");
-      auto data = encode_boundary(level, options.zstd_level);
-      if (!data.ok()) return data.status();
-      body.push_back({kBdry, std::move(data).value()});
+      if (!c.boundary_data.empty() && !c.boundary_data[i].empty()) {
+        // Made by encode_boundary, which checked the values: only that
+        // the data is this level's (its fields) is checked here.
+        const std::vector<uint8_t>& data = c.boundary_data[i];
+        Level as_level;
+        as_level.index = level.index;
+        as_level.coding = level.boundary.coding;
+        as_level.step = level.boundary.step;
+        as_level.q.resize(level.boundary.q.size());  // (only its count is written)
+        std::vector<uint8_t> fields;
+        put_level_fields(fields, as_level);
+        if (data.size() < fields.size() + 4 || !std::equal(fields.begin(), fields.end(), data.begin()))
+          return bad("the boundary chunk data given for level " + std::to_string(i + 1) + " is not that level's");
+        body.push_back({kBdry, data});
+      } else {
+        auto data = encode_boundary(level, options.zstd_level);
+        if (!data.ok()) return data.status();
+        body.push_back({kBdry, std::move(data).value()});
+      }
     }
     if (!c.level_data.empty()) {
       // Made by encode_level, which checked the level: only that the data

@@ -18,6 +18,8 @@
 #include "dbss/encoder/encode_mesh.h"
 #include "dbss/encoder/mesh_info.h"
 #include "dbss/encoder/mesh_input.h"
+#include "dbss/encoder/simplify.h"
+#include "dbss/format/writer.h"
 #include "dbss/io/geometry_files.h"
 #include "dbss/measure/mesh_distance.h"
 
@@ -324,6 +326,10 @@ TEST_CASE("mesh input: boundary odd vertices land on the input's boundary curve 
   EncodeOptions o;
   o.levels = 3;
   o.error = 1e-4;
+  // The closed budget, whose few rim vertices leave the control loops'
+  // chords far off the curve: what the values alone do.  (The budget per
+  // hole brings them closer by itself: the next test.)
+  o.control.control_faces = default_control_faces(static_cast<uint32_t>(input.triangle_count()), 0);
   MeshEncodeOptions on, off;
   off.boundary_values = false;
   auto with = encode_mesh(input, o, on);
@@ -364,6 +370,69 @@ TEST_CASE("mesh input: boundary odd vertices land on the input's boundary curve 
   const MeshInfo want = mesh_counts(input);
   const TriangleMesh finest{a.levels.positions.back(), a.levels.triangles.back()};
   CHECK(mesh_info(finest).boundary_loops == want.boundary_loops);
+}
+
+// The budget per hole (hole_budget.h): the two large holes get the rim
+// vertices their curves need, so even without BDRY values the boundary odd
+// vertices start near the curve.  With the closed budget (the rule before,
+// 14 faces a loop being less) the median was 11-19 steps at levels 1-3;
+// with the budget per hole 1.8-3.6.
+TEST_CASE("mesh input: the control budget per hole keeps large holes' rims near the curve", "[mesh_input]") {
+  const TriangleMesh input = sphere_with_holes(40, 80);
+  const MeshSurface surface(input);
+  const uint32_t closed = default_control_faces(static_cast<uint32_t>(input.triangle_count()), 0);
+  CHECK(mesh_control_faces(input, 0) > closed);
+  EncodeOptions o;
+  o.levels = 3;
+  o.error = 1e-4;
+  MeshEncodeOptions off;
+  off.boundary_values = false;
+  auto r = encode_mesh(input, o, off);
+  REQUIRE(r.ok());
+  const auto d = boundary_distances_in_steps(r.value().encoding, surface);
+  for (size_t l = 0; l < d.size(); ++l) {
+    const double median = d[l][d[l].size() / 2];
+    INFO("level " << l + 1 << ": median " << median << " steps without values, control triangles "
+                  << r.value().encoding.control.triangle_count());
+    CHECK(median < 5.0);
+  }
+}
+
+// Each level's BDRY is compressed once per coding to choose one; the
+// chosen bytes go to the writer (FileContents::boundary_data) instead of
+// being compressed a fourth time.  Same file either way; data that is not
+// the level's is refused.
+TEST_CASE("mesh input: BDRY chunks are written from the bytes chosen, not compressed again", "[mesh_input]") {
+  const TriangleMesh input = sphere_with_holes(24, 48);
+  EncodeOptions o;
+  o.levels = 2;
+  o.error = 1e-4;
+  auto r = encode_mesh(input, o);
+  REQUIRE(r.ok());
+  const Encoding& e = r.value().encoding;
+  REQUIRE(e.levels.boundary_chunks.size() == e.contents.levels.size());
+  size_t kept = 0;
+  for (size_t i = 0; i < e.contents.levels.size(); ++i) {
+    const format::Level& level = e.contents.levels[i];
+    CHECK(level.boundary.empty() == e.levels.boundary_chunks[i].empty());
+    if (level.boundary.empty()) continue;
+    ++kept;
+    auto again = format::encode_boundary(level, o.effort);
+    REQUIRE(again.ok());
+    CHECK(again.value() == e.levels.boundary_chunks[i]);
+  }
+  REQUIRE(kept > 0);
+  format::FileContents c = e.contents;
+  REQUIRE(!c.boundary_data.empty());
+  c.boundary_data.clear();
+  auto plain = format::serialize_with_toc(c, {o.effort});
+  REQUIRE(plain.ok());
+  CHECK(plain.value().bytes == e.bytes);
+  // Another level's data is refused.
+  c = e.contents;
+  for (size_t i = 0; i < c.levels.size(); ++i)
+    if (!c.boundary_data[i].empty()) c.boundary_data[i][0] ^= 0x7F;  // the level index field
+  CHECK(format::serialize_with_toc(c, {o.effort}).status().code() == ErrorCode::invalid_argument);
 }
 
 TEST_CASE("mesh input: a closed mesh's file does not change with boundary values on", "[mesh_input]") {
@@ -407,8 +476,9 @@ TriangleMesh perforated_sphere(uint32_t rings, uint32_t sides, uint32_t ring_gap
 // hole, and the odd vertices born over a hole stay there (a missed cast
 // moves them along the normal only): elephant-with-holes floored at a
 // level-to-input error of 1e-3 of the diagonal.  With a budget per loop
-// (mesh_control_faces) level 3 keeps within a bound the old budget missed
-// by 1.5x: 1.08e-4 before, 4.5e-5 after (control triangles 326 -> 896).
+// (mesh_control_faces; 14 faces a loop then, per hole since) level 3 keeps
+// within a bound the closed budget missed by 1.5x: 1.08e-4 before, 4.5e-5
+// at 14 a loop (control triangles 326 -> 896).
 TEST_CASE("mesh input: a sphere with many small holes keeps them and has no error floor", "[mesh_input]") {
   const TriangleMesh input = perforated_sphere(36, 48, 4, 6);
   const MeshInfo want = mesh_counts(input);

@@ -47,30 +47,23 @@ struct MeshEncodeOptions {
   uint32_t rdo_first_level = 1;
 };
 
-// The vertex counts of levels 0..levels of a control mesh of `vertices`,
-// `edges` and `triangles` (a 1-to-4 split: every edge gains a vertex and
-// becomes two edges, every triangle gains three edges).
-// The control mesh size for a mesh input: default_control_faces (the
-// shape's budget), or kControlFacesPerLoop per boundary loop when that is
-// more.  A loop keeps at least three control vertices on its rim, and QEM
+// The control mesh size for a mesh input (`mesh` prepared, of genus
+// `genus`): hole_budget(mesh, genus).faces, default_control_faces (the
+// shape's budget) plus, per boundary loop, the faces its rim vertices
+// need.  A loop keeps at least three control vertices on its rim, and QEM
 // collapses an edge from the rim inwards onto its rim end, so on the
 // shape's budget a mesh with many holes came out all rims:
 // elephant-with-holes (4,463 triangles, 106 holes; budget 288) got 566
 // triangles on 341 vertices, 336 of them on the holes (3.2 a hole), whose
-// chords cut across every hole.  The odd vertices born over a hole stay
-// there (a missed cast moves them along the normal only), so its levels
-// floored at a level-to-input error of 1e-3 of the diagonal.  Measured
-// with bench/lod_bench on it (level 4 two-sided error at target 2e-4;
-// dbss / Draco bytes at qp 8-11's error), per loop added to the budget:
-// 0: 6.1e-4, no qp reached; 6: 1.1e-4, 0.95 / 1.55 / 3.34 / -; 8: 9.6e-5,
-// 0.99 / 1.51 / 2.27 / 4.89; 12: 7.5e-5, 0.97 / 1.29 / 2.02 / 3.13; 16:
-// 7.3e-5, 1.04 / 1.34 / 1.95 / 2.84.  Added, it also grew meshes with a
-// few holes (mech-holes-shark, 4: +5% bytes, mixed at equal error); as
-// the larger of the two (14 a loop: 1,484 on the elephant: 0.97 / 1.29 /
-// 2.03 / 3.34) those and closed meshes keep their control mesh and file.
-constexpr uint32_t kControlFacesPerLoop = 14;
-uint32_t mesh_control_faces(uint32_t input_faces, int64_t genus, uint64_t boundary_loops);
+// chords cut across every hole, and its levels floored at a level-to-input
+// error of 1e-3 of the diagonal.  A floor of 14 faces a loop (the fourth
+// session) lifted that; the budget per hole (hole_budget.h) gives each
+// hole what its curve needs instead.  Closed meshes: default_control_faces.
+uint32_t mesh_control_faces(const TriangleMesh& mesh, int64_t genus);
 
+// The vertex counts of levels 0..levels of a control mesh of `vertices`,
+// `edges` and `triangles` (a 1-to-4 split: every edge gains a vertex and
+// becomes two edges, every triangle gains three edges).
 std::vector<uint64_t> level_vertex_counts(uint64_t vertices, uint64_t edges, uint64_t triangles, uint32_t levels);
 
 // The quantization step of a level of `level_vertices` vertices in an
@@ -86,8 +79,7 @@ inline float mesh_level_step(float step, uint64_t level_vertices, uint64_t fines
 
 // Encodes `mesh` (any triangle mesh: it is prepared first).  Of `options`,
 // outlier removal and the surface/grid/shaping choices of points do not
-// apply; control.control_faces (0: mesh_control_faces of the input's
-// triangles, genus and boundary loops), control_bits, levels (kAutoLevels: up to the first
+// apply; control.control_faces (0: mesh_control_faces of the prepared input), control_bits, levels (kAutoLevels: up to the first
 // level with more vertices than the input), error/step, effort, threads and
 // the names do; levels up to the input's density are quantized finer
 // (mesh_level_step, `mesh_options`).  Errors: invalid_argument for a mesh that is not an

@@ -59,6 +59,9 @@ struct EncodedLevels {
   // chunks[i]: the LEVL chunk data of levels[i] as choose_coding compressed
   // it, for the writer to reuse (format::FileContents::level_data).
   std::vector<std::vector<uint8_t>> chunks;
+  // boundary_chunks[i]: the BDRY chunk data of levels[i] (empty without
+  // one), kept the same way (format::FileContents::boundary_data).
+  std::vector<std::vector<uint8_t>> boundary_chunks;
   std::vector<LevelStats> stats;
   std::vector<std::vector<float>> positions;  // positions[l]: the reconstruction of level l (0 = control)
   std::vector<std::vector<uint32_t>> triangles;

@@ -26,6 +26,10 @@ struct FileContents {
   // (an encoder that compressed each level to choose its coding keeps those
   // bytes, and serialize() writes them instead of compressing again).
   std::vector<std::vector<uint8_t>> level_data;
+  // Optional, the same for BDRY chunks: empty, or per level its BDRY chunk
+  // data as encode_boundary made it (empty for a level without boundary
+  // values).
+  std::vector<std::vector<uint8_t>> boundary_data;
   std::vector<MetaEntry> metadata;    // one 'meta' chunk after the last level when not empty
   // Crease tags: empty, or a CREA chunk right after CTRL; then
   // header.version_minor must be kCreaseVersionMinor or more.
