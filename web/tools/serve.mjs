@@ -21,7 +21,11 @@ const TYPES = {
 
 // rate: bytes per second for .dbss files (0: full speed), in pieces of
 // `piece` bytes.  files: {'/name.dbss': path}.  mounts: {'/prefix/': dir}.
-export function startServer({ port = 0, host = '127.0.0.1', rate = 0, piece = 1024, files = {}, mounts = {} } = {}) {
+// hold (tests): an object the caller may fill in later, {path, at, until}:
+// a throttled send of `path` stops at file byte `at` until the promise
+// `until` settles, so a test can see what a client does with a prefix of
+// the file however slow the machine is.
+export function startServer({ port = 0, host = '127.0.0.1', rate = 0, piece = 1024, files = {}, mounts = {}, hold = null } = {}) {
   const server = createServer((req, res) => {
     const path = decodeURIComponent(new URL(req.url, 'http://x').pathname);
     const fail = (code, text) => { res.writeHead(code, { 'Content-Type': 'text/plain' }); res.end(text + '\n'); };
@@ -70,14 +74,19 @@ export function startServer({ port = 0, host = '127.0.0.1', rate = 0, piece = 10
     if (!rate || extname(file) !== '.dbss') return createReadStream(file, { start, end: end - 1 }).pipe(res);
     // Throttled: one piece every piece/rate seconds.
     const bytes = readFileSync(file).subarray(start, end);
+    // The hold as an offset into this response (a Range response starts later).
+    const held = hold && hold.path === path && hold.until && hold.at > start && hold.at < end ? hold : null;
     let at = 0;
     const tick = () => {
       if (res.destroyed) return;
-      const n = Math.min(piece, bytes.length - at);
+      let n = Math.min(piece, bytes.length - at);
+      if (held && at < held.at - start) n = Math.min(n, held.at - start - at);
       res.write(bytes.subarray(at, at + n));
       at += n;
-      if (at < bytes.length) setTimeout(tick, (1000 * n) / rate);
-      else res.end();
+      if (at >= bytes.length) return res.end();
+      const next = () => setTimeout(tick, (1000 * n) / rate);
+      if (held && at === held.at - start) held.until.then(next, next);
+      else next();
     };
     tick();
   });
