@@ -43,6 +43,8 @@ ControlRounding round_along_surface(TriangleMesh& mesh, int bits) {
 
   const double slide2 = std::pow(kRoundingSlide * delta, 2);
   double nearest_sum = 0, chosen_sum = 0;
+  // Each vertex's nearest grid point, for the guard below.
+  std::vector<float> nearest(3 * n);
   for (size_t v = 0; v < n; ++v) {
     float* x = &mesh.positions[3 * v];
     int32_t k0[3];
@@ -86,8 +88,24 @@ ControlRounding round_along_surface(TriangleMesh& mesh, int bits) {
       ++out.vertices;
     }
     chosen_sum += std::abs(dot(offset(best), nv));
-    for (int a = 0; a < 3; ++a) x[a] = grid(best[a], a);
+    for (int a = 0; a < 3; ++a) nearest[3 * v + a] = grid(k0[a], a), x[a] = grid(best[a], a);
   }
+  // A slide of up to 1.5 steps can put the two ends of a short edge (a QEM
+  // needle) on one grid point, where plain rounding keeps them apart: such
+  // ends go back to their nearest points (a zero-length edge there is what
+  // plain rounding would have written anyway).
+  const auto same = [&](uint32_t u, uint32_t w) {
+    return mesh.positions[3 * u] == mesh.positions[3 * w] && mesh.positions[3 * u + 1] == mesh.positions[3 * w + 1] &&
+           mesh.positions[3 * u + 2] == mesh.positions[3 * w + 2];
+  };
+  for (size_t f = 0; f < mesh.triangle_count(); ++f)
+    for (int c = 0; c < 3; ++c) {
+      const uint32_t u = mesh.triangles[3 * f + c], w = mesh.triangles[3 * f + (c + 1) % 3];
+      if (!same(u, w)) continue;
+      for (const uint32_t v : {u, w})
+        for (int a = 0; a < 3; ++a) mesh.positions[3 * v + a] = nearest[3 * v + a];
+      ++out.merged;
+    }
   out.nearest_normal = nearest_sum / static_cast<double>(n);
   out.chosen_normal = chosen_sum / static_cast<double>(n);
   return out;

@@ -427,7 +427,7 @@ Result<Encoding> encode_points(const PointIndex& input_index, const EncodeOption
   // one placement shows): recorded, so --grid N --grid-shift S carves the
   // same cells again.  Left out when 0, as every file before it had it.
   char shift_text[48] = "";
-  if (e.stages.carving.shift != 0) std::snprintf(shift_text, sizeof shift_text, " grid-shift=%g", e.stages.carving.shift);
+  if (e.stages.carving.shift != 0) std::snprintf(shift_text, sizeof shift_text, " grid-shift=%.17g", e.stages.carving.shift);
   const std::string params = "grid=" + std::to_string(e.stages.carving.grid) + shift_text + " control-faces=" +
                              std::to_string(e.stages.control.triangle_count()) + " control-bits=" +
                              std::to_string(e.control_bits) + " levels=" + std::to_string(level_count) + (o.levels == kAutoLevels ? " (auto)" : "") +

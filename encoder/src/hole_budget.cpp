@@ -88,7 +88,12 @@ HoleBudget hole_budget(const TriangleMesh& m, int64_t genus, double tolerance, d
     r.loop_vertices.push_back(n);
     extra += faces_per_vertex * n + 2;
   }
-  const double total = std::min<double>(static_cast<double>(r.closed_faces) + extra, UINT32_MAX - 1.0);
+  // At most three quarters of the input's triangles (never under the closed
+  // budget): a raw scan with thousands of tiny holes would otherwise ask for
+  // more faces than it has, QEM would do nothing and every level would
+  // grow 4x from the input itself.
+  const double cap = std::max(static_cast<double>(r.closed_faces), 0.75 * static_cast<double>(m.triangle_count()));
+  const double total = std::min({static_cast<double>(r.closed_faces) + extra, cap, UINT32_MAX - 1.0});
   r.faces = static_cast<uint32_t>(total) & ~1u;
   return r;
 }

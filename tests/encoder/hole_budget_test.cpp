@@ -102,3 +102,22 @@ TEST_CASE("hole budget: closed meshes keep the closed budget, holes add faces by
   CHECK(b.faces > s.faces);
   CHECK(s.faces >= s.closed_faces + static_cast<uint32_t>(kHoleFacesPerVertex * 3));
 }
+
+TEST_CASE("hole budget: many tiny holes ask for at most three quarters of the input's triangles", "[hole_budget]") {
+  // Every third vertex of every third ring holed (stars apart, so the mesh
+  // stays manifold): a raw scan's pinholes.  Uncapped, 11 faces per hole
+  // would ask for more faces than the mesh has.
+  std::vector<std::pair<uint32_t, uint32_t>> holes;
+  for (uint32_t i = 2; i < 11; i += 3)
+    for (uint32_t j = 0; j + 3 < 16; j += 3) holes.emplace_back(i, j);
+  const TriangleMesh m = sphere_with_holes(12, 16, holes, 0);
+  // 20 faces per rim vertex (the default is 3) so that this small mesh's
+  // holes ask for more than it has.
+  const double per_vertex = 20;
+  const HoleBudget b = hole_budget(m, 0, kHoleTolerance, per_vertex);
+  REQUIRE(b.loop_vertices.size() == holes.size());
+  const double uncapped = b.closed_faces + static_cast<double>(holes.size()) * (per_vertex * 3 + 2);
+  REQUIRE(uncapped > static_cast<double>(m.triangle_count()));
+  CHECK(b.faces <= 0.75 * static_cast<double>(m.triangle_count()));
+  CHECK(b.faces >= b.closed_faces);
+}

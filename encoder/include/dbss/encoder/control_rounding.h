@@ -12,6 +12,7 @@ struct ControlRounding {
   double nearest_normal = 0;  // mean |offset along the vertex normal| of plain rounding (model units)
   double chosen_normal = 0;   // the same for the grid points chosen
   double grid = 0;            // the grid's spacing (model units)
+  size_t merged = 0;          // edges whose ends met on one grid point and went back to plain rounding
 };
 
 // How far (in grid spacings) a vertex may slide along its surface to reach
