@@ -8,6 +8,7 @@
 
 #include "../test_data.h"
 #include "dbss/encoder/encode_mesh.h"
+#include "dbss/encoder/mesh_input.h"
 #include "dbss/encoder/simplify.h"
 #include "dbss/io/geometry_files.h"
 #include "dbss/measure/mesh_distance.h"
@@ -27,9 +28,14 @@ TEST_CASE("simplify_mesh: a subdivided armadillo one level finer simplifies abou
   REQUIRE(enc.ok());
   const Encoding& e = enc.value().encoding;
   const TriangleMesh coarse{e.levels.positions[L - 1], e.levels.triangles[L - 1]}, fine{e.levels.positions[L], e.levels.triangles[L]};
-  SimplifyOptions so;
-  so.needle = 0.01;  // control_mesh_from_mesh's
-  const auto a = simplify_mesh(coarse, target, nullptr, so), b = simplify_mesh(fine, target, nullptr, so);
+  // control_mesh_from_mesh's limit: both levels are more than 32x finer
+  // than the target, so 0.01.
+  SimplifyOptions sa, sb;
+  sa.needle = mesh_control_needle(coarse.triangle_count(), target);
+  sb.needle = mesh_control_needle(fine.triangle_count(), target);
+  CHECK(sa.needle == 0.01);
+  CHECK(sb.needle == 0.01);
+  const auto a = simplify_mesh(coarse, target, nullptr, sa), b = simplify_mesh(fine, target, nullptr, sb);
   REQUIRE(a.ok());
   REQUIRE(b.ok());
   MeshDistanceOptions mo;

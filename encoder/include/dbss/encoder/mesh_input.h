@@ -93,4 +93,9 @@ struct MeshControlStats {
 Result<TriangleMesh> control_mesh_from_mesh(const TriangleMesh& input, const MeshSurface& surface,
                                             uint32_t target_faces, MeshControlStats* stats = nullptr);
 
+// The QEM needle limit (SimplifyOptions::needle) control_mesh_from_mesh
+// uses: 0.01 when the input has more than 32 times `target_faces`
+// triangles, 0.05 (the simplifier's default) otherwise.
+double mesh_control_needle(size_t input_faces, uint32_t target_faces);
+
 }  // namespace dbss

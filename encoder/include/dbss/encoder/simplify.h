@@ -33,7 +33,8 @@ struct SimplifyOptions {
   // side squared is a needle and its collapse is refused: 0.05 is a
   // smallest angle of about 2.9 degrees, 0.01 about 0.6.  The point path
   // keeps 0.05 (its shape stage and valence limits were tuned on it).  A
-  // mesh input takes 0.01: a refused collapse leaves the heap for good,
+  // mesh input more than 32 times finer than its control mesh takes 0.01
+  // (mesh_control_needle): a refused collapse leaves the heap for good,
   // and on fine inputs the refusals piled up near the end, where the cheap
   // thin collapses in smooth parts were refused and QEM ate the features
   // instead (issue 18).  The armadillo subdivided to 998k triangles, to
