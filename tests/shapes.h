@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <vector>
 
 #include "dbss/decoder/mesh.h"
 
@@ -121,6 +122,19 @@ inline TriangleMesh jitter(TriangleMesh m, float amount, uint32_t seed = 1) {
     s = s * 1664525u + 1013904223u;
     x += amount * (static_cast<float>(s >> 8) / 16777216.0f - 0.5f);
   }
+  return m;
+}
+
+// The mesh without every triangle that touches a vertex marked in `gone`
+// (the vertices stay, unreferenced): holes cut where the stars were.
+inline TriangleMesh without_stars(TriangleMesh m, const std::vector<uint8_t>& gone) {
+  std::vector<uint32_t> kept;
+  for (size_t f = 0; f < m.triangle_count(); ++f) {
+    const uint32_t* t = &m.triangles[3 * f];
+    if (gone[t[0]] || gone[t[1]] || gone[t[2]]) continue;
+    kept.insert(kept.end(), t, t + 3);
+  }
+  m.triangles = kept;
   return m;
 }
 

@@ -4,23 +4,9 @@
 #include <cmath>
 
 #include "dbss/decoder/topology.h"
+#include "mesh_geometry.h"
 
 namespace dbss {
-
-namespace {
-
-double distance2_to_segment(const double p[3], const double a[3], const double b[3]) {
-  double ab[3], ap[3];
-  for (int k = 0; k < 3; ++k) ab[k] = b[k] - a[k], ap[k] = p[k] - a[k];
-  const double len2 = ab[0] * ab[0] + ab[1] * ab[1] + ab[2] * ab[2];
-  double t = len2 > 0 ? (ap[0] * ab[0] + ap[1] * ab[1] + ap[2] * ab[2]) / len2 : 0;
-  t = std::clamp(t, 0.0, 1.0);
-  double d2 = 0;
-  for (int k = 0; k < 3; ++k) d2 += (ap[k] - t * ab[k]) * (ap[k] - t * ab[k]);
-  return d2;
-}
-
-}  // namespace
 
 CreaseLines::CreaseLines(const TriangleMesh& control, const format::Creases& creases, const PointIndex& points,
                          double slack, size_t neighbourhood) {
@@ -80,8 +66,12 @@ bool CreaseLines::near(const double p[3]) const {
   const auto it = grid_.find(cell_key(static_cast<int64_t>(std::floor(p[0] / cell_)), static_cast<int64_t>(std::floor(p[1] / cell_)),
                                       static_cast<int64_t>(std::floor(p[2] / cell_))));
   if (it == grid_.end()) return false;
-  for (uint32_t i : it->second)
-    if (distance2_to_segment(p, segments_[i].a, segments_[i].b) <= segments_[i].reach * segments_[i].reach) return true;
+  using mesh_geometry::V3;
+  for (uint32_t i : it->second) {
+    const Segment& g = segments_[i];
+    const double d2 = mesh_geometry::distance2_to_segment(V3{p[0], p[1], p[2]}, V3{g.a[0], g.a[1], g.a[2]}, V3{g.b[0], g.b[1], g.b[2]});
+    if (d2 <= g.reach * g.reach) return true;
+  }
   return false;
 }
 

@@ -13,6 +13,7 @@
 
 #include "dbss/encoder/open_surface.h"
 #include "dbss/encoder/simplify.h"
+#include "mesh_geometry.h"
 
 namespace dbss {
 
@@ -24,24 +25,16 @@ double dist2(const float* a, const float* b) {
   return s;
 }
 
-// Squared distance from p to the segment ab.
-double segment_dist2(const float* p, const float* a, const float* b) {
-  double ab[3], ap[3];
-  for (int k = 0; k < 3; ++k) ab[k] = double{b[k]} - a[k], ap[k] = double{p[k]} - a[k];
-  const double len2 = ab[0] * ab[0] + ab[1] * ab[1] + ab[2] * ab[2];
-  double t = len2 > 0 ? (ap[0] * ab[0] + ap[1] * ab[1] + ap[2] * ab[2]) / len2 : 0;
-  t = std::clamp(t, 0.0, 1.0);
-  double s = 0;
-  for (int k = 0; k < 3; ++k) s += (ap[k] - t * ab[k]) * (ap[k] - t * ab[k]);
-  return s;
-}
-
 }  // namespace
 
 uint32_t loop_vertices_needed(const std::vector<float>& positions, const std::vector<uint32_t>& loop, double tolerance) {
   const size_t n = loop.size();
   if (n <= 3) return 3;
   const auto at = [&](size_t i) { return &positions[3 * size_t{loop[i % n]}]; };
+  const auto point = [&](size_t i) {
+    const float* p = at(i);
+    return mesh_geometry::V3{p[0], p[1], p[2]};
+  };
   // Two mutually far vertices split the loop into two chains.
   size_t a = 0, b = 0;
   for (int pass = 0; pass < 2; ++pass) {
@@ -64,7 +57,7 @@ uint32_t loop_vertices_needed(const std::vector<float>& positions, const std::ve
     size_t worst = i;
     double worst_d = tol2;
     for (size_t k = i + 1; k < j; ++k)
-      if (const double d = segment_dist2(at(k), at(i), at(j)); d > worst_d) worst_d = d, worst = k;
+      if (const double d = mesh_geometry::distance2_to_segment(point(k), point(i), point(j)); d > worst_d) worst_d = d, worst = k;
     if (worst == i) continue;
     ++kept;
     todo.push_back({i, worst});

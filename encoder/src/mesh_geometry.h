@@ -41,4 +41,15 @@ inline V3 face_normal(const TriangleMesh& m, size_t f) {
   return cross(sub(b, a), sub(c, a));
 }
 
+// Squared distance from p to the segment ab (ab of zero length: to a).
+inline double distance2_to_segment(V3 p, V3 a, V3 b) {
+  const V3 ab = sub(b, a), ap = sub(p, a);
+  const double len2 = dot(ab, ab);
+  double t = len2 > 0 ? dot(ap, ab) / len2 : 0;
+  t = t < 0 ? 0 : t > 1 ? 1 : t;
+  double d2 = 0;
+  for (int k = 0; k < 3; ++k) d2 += (ap[k] - t * ab[k]) * (ap[k] - t * ab[k]);
+  return d2;
+}
+
 }  // namespace dbss::mesh_geometry

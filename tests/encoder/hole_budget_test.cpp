@@ -25,14 +25,7 @@ TriangleMesh sphere_with_holes(uint32_t rings, uint32_t sides, const std::vector
   for (auto [i, j] : holes)
     for (uint32_t di = i - radius; di <= i + radius; ++di)
       for (uint32_t dj = j + sides - radius; dj <= j + sides + radius; ++dj) gone[di * sides + dj % sides] = 1;
-  std::vector<uint32_t> kept;
-  for (size_t f = 0; f < s.triangle_count(); ++f) {
-    const uint32_t* t = &s.triangles[3 * f];
-    if (gone[t[0]] || gone[t[1]] || gone[t[2]]) continue;
-    kept.insert(kept.end(), t, t + 3);
-  }
-  s.triangles = kept;
-  return prepare_mesh_input(s).value();
+  return prepare_mesh_input(test::without_stars(s, gone)).value();
 }
 
 // A closed polyline: a circle of radius 1 with n vertices.

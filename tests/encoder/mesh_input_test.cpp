@@ -459,14 +459,7 @@ TriangleMesh perforated_sphere(uint32_t rings, uint32_t sides, uint32_t ring_gap
   std::vector<uint8_t> gone(s.vertex_count(), 0);
   for (uint32_t i = 2; i + 2 < rings; i += ring_gap)
     for (uint32_t j = (i / ring_gap % 2) * side_gap / 2; j < sides; j += side_gap) gone[i * sides + j] = 1;
-  std::vector<uint32_t> kept;
-  for (size_t f = 0; f < s.triangle_count(); ++f) {
-    const uint32_t* t = &s.triangles[3 * f];
-    if (gone[t[0]] || gone[t[1]] || gone[t[2]]) continue;
-    kept.insert(kept.end(), t, t + 3);
-  }
-  s.triangles = kept;
-  return prepare_mesh_input(s).value();
+  return prepare_mesh_input(test::without_stars(s, gone)).value();
 }
 }  // namespace
 
