@@ -16,6 +16,7 @@ files=(
   data/meshes/elephant.off                       # mesh input (issue 18)
   data/meshes/elephant-with-holes.off
   data/meshes/blobby_3cc.off
+  data/meshes/camel.off                          # mesh input's needle rule (control_needle_test)
   data/points_3/kitten.xyz
   data/points_3/hippo1.ply
   data/points_3/half.xyz
