@@ -274,7 +274,8 @@ std::vector<std::pair<uint32_t, uint32_t>> crossings(const TriangleMesh& m, cons
         // (a branch per test, each taken at random, cost more than the
         // tests).
         bool skip = (p.box[1] > q.box[4]) | (q.box[1] > p.box[4]) | (p.box[2] > q.box[5]) | (q.box[2] > p.box[5]);
-        skip |= (std::max(p.low[0], q.low[0]) != bx) | (std::max(p.low[1], q.low[1]) != by) | (std::max(p.low[2], q.low[2]) != bz);
+        const auto lx = std::max(p.low[0], q.low[0]), ly = std::max(p.low[1], q.low[1]), lz = std::max(p.low[2], q.low[2]);
+        skip |= (lx != bx) | (ly != by) | (lz != bz);
         for (int k = 0; k < 3; ++k) skip |= (p.v[k] == q.v[0]) | (p.v[k] == q.v[1]) | (p.v[k] == q.v[2]);
         if (skip) continue;
         V3 t[3], u[3];
