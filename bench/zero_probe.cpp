@@ -1,0 +1,306 @@
+// What zeros cost in LEVL coding 2 and what a format change for them would
+// save (issue 18).  Per level: the share of zeros and small values, and the
+// ideal bits (-log2 P under spec 9b's own adaptive model) split into the
+// zero decision of zeros, the zero decision of non-zeros, signs and
+// magnitudes.  Then two format changes simulated on the same values:
+//  - a per-face "stop refining" flag (every odd vertex on the face's edges
+//    and below it is zero), coded for the faces of levels `first`..L-1
+//    whose parent is not stopped, with an adaptive probability per
+//    (previous face's flag, how many of its corners carry a non-zero q of
+//    their own level); the implied zeros are left out of the stream;
+//  - a geometric context a decoder could compute before a level's values:
+//    how far the butterfly point sits off its edge's chord, in steps
+//    (zero decision by its size, sign by its sign).
+// The ideal costing is checked against the encoder's real coding-2 chunks
+// (exit 2 when a level differs by more than 0.2% + 6 bytes: the flush
+// adds about 4; a model adapting at 1/16 instead of 1/32 is 1% off), so the
+// simulations start from the coder the files use.
+//   zero_probe [--levels L] [--error E] [--faces F] [--rdo LAMBDA] MESH
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include "dbss/encoder/encode_mesh.h"
+#include "dbss/encoder/mesh_input.h"
+#include "dbss/io/geometry_files.h"
+
+using namespace dbss;
+
+namespace {
+
+// Spec 9b's adaptive probability, costed ideally (-log2 of the coded bit's
+// probability) instead of range coded: within a few bytes of the real coder.
+struct Prob {
+  uint32_t p = 16384;
+  double code(uint32_t bit) {
+    const double c = bit ? -std::log2((32768.0 - p) / 32768.0) : -std::log2(p / 32768.0);
+    if (bit) p -= p >> 5;
+    else p += (32768 - p) >> 5;
+    return c;
+  }
+};
+
+struct Costs {
+  double zero_of_zeros = 0, zero_of_nonzeros = 0, sign = 0, magnitude = 0;
+  double total() const { return zero_of_zeros + zero_of_nonzeros + sign + magnitude; }
+};
+
+// Spec 9b's model over `q` in order, costs split by kind.
+struct Model {
+  Prob zero[7], sign[3], mag[7][14], expo[25];
+  int32_t q1 = 0, q2 = 0;
+  void code(int32_t v, Costs& c) {
+    const uint32_t ctx = std::min<uint32_t>(std::abs(q1) + std::abs(q2), 6);
+    const uint32_t s = q1 == 0 ? 0 : q1 > 0 ? 1 : 2;
+    if (v == 0) {
+      c.zero_of_zeros += zero[ctx].code(0);
+    } else {
+      c.zero_of_nonzeros += zero[ctx].code(1);
+      c.sign += sign[s].code(v < 0);
+      const uint32_t m = std::abs(v);
+      for (uint32_t j = 1; j <= 14; ++j) {
+        if (j == m) { c.magnitude += mag[ctx][j - 1].code(0); break; }
+        c.magnitude += mag[ctx][j - 1].code(1);
+      }
+      if (m >= 15) {
+        const uint32_t x = m - 14;
+        const int e = 31 - __builtin_clz(x);
+        for (int k = 0; k < e; ++k) c.magnitude += expo[k].code(1);
+        c.magnitude += expo[e].code(0) + e;
+      }
+    }
+    q2 = q1, q1 = v;
+  }
+};
+
+// Edge ids of a level's half-edges in the canonical order (decoding.md 3).
+std::vector<uint32_t> half_edge_edges(const std::vector<uint32_t>& T) {
+  std::unordered_map<uint64_t, uint32_t> seen;
+  seen.reserve(T.size());
+  std::vector<uint32_t> id(T.size());
+  uint32_t next = 0;
+  for (size_t h = 0; h < T.size(); ++h) {
+    const uint32_t a = T[h], b = T[h % 3 == 2 ? h - 2 : h + 1];
+    const uint64_t key = uint64_t{std::min(a, b)} << 32 | std::max(a, b);
+    auto [it, fresh] = seen.emplace(key, next);
+    if (fresh) ++next;
+    id[h] = it->second;
+  }
+  return id;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  uint32_t levels = 4;
+  double error = 1.3e-4;
+  uint32_t faces = 0;
+  double rdo = 0;
+  std::string path;
+  for (int i = 1; i < argc; ++i) {
+    std::string a = argv[i];
+    if (a == "--levels") levels = std::atoi(argv[++i]);
+    else if (a == "--error") error = std::atof(argv[++i]);
+    else if (a == "--faces") faces = std::atoi(argv[++i]);
+    else if (a == "--rdo") rdo = std::atof(argv[++i]);
+    else path = a;
+  }
+  auto in = read_mesh(path);
+  if (!in.ok()) return 77;
+  EncodeOptions o;
+  o.levels = levels;
+  o.error = error;
+  o.threads = 1;
+  o.control.control_faces = faces;
+  MeshEncodeOptions mo;
+  mo.rdo_lambda = rdo;
+  mo.rdo_first_level = levels;
+  auto e = encode_mesh(in.value(), o, mo);
+  if (!e.ok()) { std::fprintf(stderr, "%s\n", e.status().to_string().c_str()); return 1; }
+  const Encoding& en = e.value().encoding;
+  const uint32_t L = en.level_count;
+  std::printf("%s: %zu bytes, control %zu triangles, error target %g, step %g\n", path.c_str(), en.bytes.size(),
+              en.levels.triangles[0].size() / 3, error, en.step);
+
+  // q[l] (l = 1..L): level l's values, one per edge of level l-1.
+  std::vector<std::vector<int32_t>> q(L + 1);
+  std::vector<std::vector<uint32_t>> edge_of(L + 1);  // edge_of[m]: half-edge -> edge of level m
+  for (uint32_t l = 1; l <= L; ++l) q[l] = en.contents.levels[l - 1].q;
+  for (uint32_t m = 0; m < L; ++m) edge_of[m] = half_edge_edges(en.levels.triangles[m]);
+
+  std::printf("\n| level | odd | zeros | abs 1 | abs 2 | abs > 2 | chunk bytes | bits/odd | zero flags of zeros | of non-zeros | signs | magnitudes |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+  double all_bits = 0;
+  std::vector<double> level_bits(L + 1);
+  for (uint32_t l = 1; l <= L; ++l) {
+    size_t n[4] = {};
+    for (int32_t v : q[l]) ++n[std::min<uint32_t>(std::abs(v), 3)];
+    Model m;
+    Costs c;
+    for (int32_t v : q[l]) m.code(v, c);
+    const double odd = double(q[l].size());
+    level_bits[l] = c.total();
+    all_bits += c.total();
+    const auto& chunk = en.levels.chunks[l - 1];
+    if (en.contents.levels[l - 1].coding == format::DisplacementCoding::context &&
+        std::abs(c.total() / 8 - double(chunk.size() - 16)) > 0.002 * double(chunk.size()) + 6) {
+      std::fprintf(stderr, "level %u: ideal %.0f bytes, coder %zu: the model here is not spec 9b's\n", l,
+                   c.total() / 8, chunk.size() - 16);
+      return 2;
+    }
+    std::printf("| %u | %zu | %.1f%% | %.1f%% | %.1f%% | %.1f%% | %zu | %.3f | %.1f%% | %.1f%% | %.1f%% | %.1f%% |\n", l,
+                q[l].size(), 100 * n[0] / odd, 100 * n[1] / odd, 100 * n[2] / odd, 100 * n[3] / odd,
+                en.levels.chunks[l - 1].size(), c.total() / odd, 100 * c.zero_of_zeros / c.total(),
+                100 * c.zero_of_nonzeros / c.total(), 100 * c.sign / c.total(), 100 * c.magnitude / c.total());
+  }
+
+  // dead[m][f]: every odd vertex of levels m+1..L on f's edges or below f is zero.
+  std::vector<std::vector<uint8_t>> dead(L);
+  for (int m = int(L) - 1; m >= 0; --m) {
+    const size_t nf = en.levels.triangles[m].size() / 3;
+    dead[m].assign(nf, 0);
+    for (size_t f = 0; f < nf; ++f) {
+      bool d = true;
+      for (int k = 0; k < 3 && d; ++k) d = q[m + 1][edge_of[m][3 * f + k]] == 0;
+      for (int k = 0; k < 4 && d && m + 1 < int(L); ++k) d = dead[m + 1][4 * f + k];
+      dead[m][f] = d;
+    }
+  }
+  std::printf("\nfaces whose whole subtree is zero (share of the level's faces): ");
+  for (uint32_t m = 0; m < L; ++m) {
+    size_t d = 0;
+    for (auto x : dead[m]) d += x;
+    std::printf("level %u %.1f%%  ", m, 100.0 * d / dead[m].size());
+  }
+  std::printf("\n");
+
+  // Simulated coder: flags on faces of levels first..L-1 (those whose parent
+  // is not flagged dead), coded in LEVL m+1 before its values with one
+  // adaptive probability per context (how many of the face's three edge
+  // neighbours at level m were coded dead before it: 0..3, else 4 = parent
+  // level had no flags); values implied zero left out of the stream.
+  std::printf("\n| flags from level | flag bits | values left | value bits | total bits | vs today | per level (today -> with flags, bits/odd) |\n|---|---|---|---|---|---|---|\n");
+  for (uint32_t first = 0; first < L; ++first) {
+    double flag_bits = 0, value_bits = 0;
+    size_t left = 0;
+    std::string per;
+    for (uint32_t m = 0; m < L; ++m) {
+      const size_t nf = dead[m].size();
+      // covered: face under a dead flagged face (itself flagged dead or its ancestor)
+      std::vector<uint8_t> covered(nf, 0);
+      double fb = 0;
+      if (m >= first) {
+        Prob ctx[2][5];
+        const auto& Tm = en.levels.triangles[m];
+        const size_t Vprev = m > 0 ? en.levels.positions[m - 1].size() / 3 : 0;
+        for (size_t f = 0; f < nf; ++f) {
+          const bool parent_dead = m > first && dead[m - 1][f / 4];
+          if (parent_dead) { covered[f] = 1; continue; }
+          // context: the previous face's flag in face order, and how many
+          // of the face's corners are odd vertices of level m with q != 0
+          // (4: level 0, no q); the decoder knows both before the flag.
+          int corners = m == 0 ? 4 : 0;
+          for (int k = 0; k < 3 && m > 0; ++k) {
+            const uint32_t v = Tm[3 * f + k];
+            corners += v >= Vprev && q[m][v - Vprev] != 0;
+          }
+          const int c0 = f > 0 && dead[m][f - 1] ? 1 : 0;
+          auto& cp = ctx[c0][corners];
+          fb += cp.code(dead[m][f]);
+          covered[f] = dead[m][f];
+        }
+      }
+      std::vector<uint8_t> implied(q[m + 1].size(), 0);
+      const auto& T = en.levels.triangles[m];
+      for (size_t f = 0; f < T.size() / 3; ++f)
+        if (covered[f])
+          for (int k = 0; k < 3; ++k) implied[edge_of[m][3 * f + k]] = 1;
+      Model model;
+      Costs c;
+      size_t lv = 0;
+      for (size_t i = 0; i < q[m + 1].size(); ++i)
+        if (!implied[i]) model.code(q[m + 1][i], c), ++lv;
+      flag_bits += fb, value_bits += c.total(), left += lv;
+      char buf[96];
+      std::snprintf(buf, sizeof buf, " L%u %.3f->%.3f", m + 1, level_bits[m + 1] / q[m + 1].size(),
+                    (fb + c.total()) / q[m + 1].size());
+      per += buf;
+    }
+    std::printf("| %u | %.0f | %zu | %.0f | %.0f | %.1f%% |%s |\n", first, flag_bits, left, value_bits,
+                flag_bits + value_bits, 100 * (flag_bits + value_bits - all_bits) / all_bits, per.c_str());
+  }
+
+  // A geometric context (what a decoder could compute before level l's
+  // values): the butterfly point's offset from its edge's chord midpoint
+  // along the normal, c = (p0 - mid) . n, in steps.  n here is the mean of
+  // the edge's two face normals and p0 = the decoded odd vertex - q step n,
+  // an estimate for this measurement only.  Zero decision by (today's
+  // context, |c| bucket), sign by (today's, sign of c).
+  std::printf("\n| level | today bits/odd | with |c| for zero, sign(c) for sign | zero bits | sign bits | P(sign = -sign c) |\n|---|---|---|---|---|---|\n");
+  double geo_all = 0;
+  for (uint32_t m = 0; m < L; ++m) {
+    const auto& T = en.levels.triangles[m];
+    const auto& P = en.levels.positions[m];
+    const auto& P1 = en.levels.positions[m + 1];
+    const size_t V = P.size() / 3;
+    const double step = en.contents.levels[m].step;
+    std::vector<double> nrm(3 * q[m + 1].size(), 0.0), mid(3 * q[m + 1].size(), 0.0);
+    for (size_t f = 0; f < T.size() / 3; ++f) {
+      const float* a = &P[3 * size_t{T[3 * f]}];
+      const float* b = &P[3 * size_t{T[3 * f + 1]}];
+      const float* c = &P[3 * size_t{T[3 * f + 2]}];
+      const double u[3] = {double(b[0]) - a[0], double(b[1]) - a[1], double(b[2]) - a[2]};
+      const double v[3] = {double(c[0]) - a[0], double(c[1]) - a[1], double(c[2]) - a[2]};
+      double n[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+      const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+      if (len > 0) for (double& x : n) x /= len;
+      for (int k = 0; k < 3; ++k) {
+        const uint32_t e = edge_of[m][3 * f + k];
+        const uint32_t i0 = T[3 * f + k], i1 = T[3 * f + (k + 1) % 3];
+        for (int d = 0; d < 3; ++d) nrm[3 * e + d] += n[d], mid[3 * e + d] = 0.5 * (double(P[3 * i0 + d]) + P[3 * i1 + d]);
+      }
+    }
+    Prob zero[7][6], sign[3][3], zero0[7], sign0[3];
+    Model rest;  // magnitudes as today
+    Costs mags;
+    double zb = 0, sb = 0, zb0 = 0, sb0 = 0;
+    size_t against = 0, nz = 0;
+    int32_t q1 = 0, q2 = 0;
+    for (size_t e = 0; e < q[m + 1].size(); ++e) {
+      double* n = &nrm[3 * e];
+      const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+      double c = 0;
+      const int32_t v = q[m + 1][e];
+      if (len > 0) {
+        for (int d = 0; d < 3; ++d) c += (P1[3 * (V + e) + d] - mid[3 * e + d]) * n[d] / len;
+        c = c / step - v;
+      }
+      const double ac = std::abs(c);
+      const int bucket = ac < 0.25 ? 0 : ac < 0.5 ? 1 : ac < 1 ? 2 : ac < 2 ? 3 : ac < 4 ? 4 : 5;
+      const int cs = c > 0.05 ? 1 : c < -0.05 ? 2 : 0;
+      const uint32_t ctx = std::min<uint32_t>(std::abs(q1) + std::abs(q2), 6);
+      const uint32_t s = q1 == 0 ? 0 : q1 > 0 ? 1 : 2;
+      zb += zero[ctx][bucket].code(v != 0);
+      zb0 += zero0[ctx].code(v != 0);
+      if (v != 0) {
+        sb += sign[s][cs].code(v < 0);
+        sb0 += sign0[s].code(v < 0);
+        ++nz;
+        against += (v > 0) != (c > 0);
+      }
+      q2 = q1, q1 = v;
+    }
+    const double odd = double(q[m + 1].size());
+    const double geo = level_bits[m + 1] - zb0 - sb0 + zb + sb;
+    geo_all += geo;
+    std::printf("| %u | %.3f | %.3f (%+.1f%%) | %.0f -> %.0f | %.0f -> %.0f | %.2f |\n", m + 1, level_bits[m + 1] / odd,
+                geo / odd, 100 * (geo - level_bits[m + 1]) / level_bits[m + 1], zb0, zb, sb0, sb,
+                double(against) / std::max<size_t>(nz, 1));
+  }
+  std::printf("geometric contexts, all levels: %.0f bytes (%+.1f%%)\n", geo_all / 8, 100 * (geo_all - all_bits) / all_bits);
+  std::printf("\ntoday, all levels: %.0f bits = %.0f bytes (ideal costing)\n", all_bits, all_bits / 8);
+  return 0;
+}
