@@ -6,6 +6,7 @@
 
 #include "dbss/encoder/mesh_adjacency.h"
 #include "dbss/encoder/mesh_folds.h"
+#include "dbss/encoder/point_grid.h"
 #include "dbss/encoder/self_intersections.h"
 
 namespace dbss {
@@ -63,6 +64,9 @@ ShrinkWrapStats shrink_wrap(TriangleMesh& m, const PointIndex& index, const Shri
   // by cell, instead of a search from scratch per vertex beforehand.
   constexpr uint32_t kNoHint = UINT32_MAX;
   std::vector<uint32_t> hint(n, kNoHint);
+  // The warm-started searches on a grid of cells about an edge long (the
+  // same answers as the tree's: PointGrid::nearest).
+  const PointGrid grid(index, mean_edge);
   for (int it = 0; it < o.max_iterations; ++it) {
     const auto normals = vertex_normals(m);
     double moved = 0;
@@ -72,7 +76,7 @@ ShrinkWrapStats shrink_wrap(TriangleMesh& m, const PointIndex& index, const Shri
       const float* p = &m.positions[3 * v];
       // Projection: part of the way to the closest point.
       const uint32_t from = hint[v] != kNoHint ? hint[v] : v > 0 ? hint[v - 1] : kNoHint;
-      const uint32_t c = hint[v] = from != kNoHint ? index.nearest(p, from) : index.nearest(p);
+      const uint32_t c = hint[v] = from != kNoHint ? grid.nearest(p, from) : index.nearest(p);
       double q[3];
       for (int a = 0; a < 3; ++a) q[a] = p[a] + o.step * (pc.xyz[3 * c + a] - p[a]);
       // Smoothing: towards the neighbours' average within the tangent plane
@@ -125,7 +129,7 @@ ShrinkWrapStats shrink_wrap(TriangleMesh& m, const PointIndex& index, const Shri
     const float* p = &m.positions[3 * v];
     // From the last iteration's nearest point: the same distance as a
     // search from scratch (which cost 4% of the bunny's control mesh).
-    const uint32_t c = hint[v] != kNoHint ? index.nearest(p, hint[v]) : index.nearest(p);
+    const uint32_t c = hint[v] != kNoHint ? grid.nearest(p, hint[v]) : index.nearest(p);
     double d2 = 0;
     for (int a = 0; a < 3; ++a) d2 += std::pow(pc.xyz[3 * c + a] - p[a], 2);
     sum += std::sqrt(d2);
