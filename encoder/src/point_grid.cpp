@@ -36,15 +36,18 @@ PointGrid::PointGrid(const PointIndex& index, double cell) : index_(index) {
   std::vector<uint32_t> at(start_.begin(), start_.end() - 1);
   xyz_.resize(3 * n);
   id_.resize(n);
+  slot_of_.resize(n);
   for (size_t i = 0; i < n; ++i) {
     const uint32_t k = at[of[i]]++;
-    id_[k] = static_cast<uint32_t>(i);
+    id_[k] = static_cast<uint32_t>(i), slot_of_[i] = k;
     for (int a = 0; a < 3; ++a) xyz_[3 * size_t{k} + a] = pc.xyz[3 * i + a];
   }
 }
 
-uint32_t PointGrid::nearest(const float q[3], uint32_t hint) const {
-  const float* h = &index_.points().xyz[3 * size_t{hint}];
+uint32_t PointGrid::nearest(const float q[3], uint32_t hint) const { return id_[nearest_slot(q, slot_of_[hint])]; }
+
+uint32_t PointGrid::nearest_slot(const float q[3], uint32_t hint) const {
+  const float* h = &xyz_[3 * size_t{hint}];
   // Distances as nanoflann's L2_Simple_Adaptor sums them: in float, axis by
   // axis from zero (the build keeps fp-contract off).
   const auto dist2 = [q](const float* p) {
@@ -81,10 +84,10 @@ uint32_t PointGrid::nearest(const float q[3], uint32_t hint) const {
         const size_t row = (size_t(z) * n_[1] + y) * n_[0];
         const uint32_t e = start_[row + std::min(n_[0] - 1, c[0] + 1) + 1];
         for (uint32_t k = start_[row + std::max(0, c[0] - 1)]; k < e; ++k)
-          if (const float d = dist2(&xyz_[3 * size_t{k}]); d < hd) hd = d, better = id_[k];
+          if (const float d = dist2(&xyz_[3 * size_t{k}]); d < hd) hd = d, better = k;
       }
-    if (better != UINT32_MAX) return nearest(q, better);
-    return ++tree_queries_, index_.nearest(q, hint);
+    if (better != UINT32_MAX) return nearest_slot(q, better);
+    return ++tree_queries_, slot_of_[index_.nearest(q, id_[hint])];
   }
   float best = INFINITY, second = INFINITY;
   uint32_t at = UINT32_MAX;
@@ -101,8 +104,8 @@ uint32_t PointGrid::nearest(const float q[3], uint32_t hint) const {
     }
   // Two points this close could be ordered differently by the tree (its
   // subtree bounds round within a few ulps): the tree decides.
-  if (at == UINT32_MAX || second <= best * (1 + 1e-5f)) return ++tree_queries_, index_.nearest(q, hint);
-  return id_[at];
+  if (at == UINT32_MAX || second <= best * (1 + 1e-5f)) return ++tree_queries_, slot_of_[index_.nearest(q, id_[hint])];
+  return at;
 }
 
 }  // namespace dbss

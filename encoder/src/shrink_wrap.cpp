@@ -34,7 +34,6 @@ void rim_smoothing(const TriangleMesh& m, const std::array<uint32_t, 2>& ends, c
 }  // namespace
 
 ShrinkWrapStats shrink_wrap(TriangleMesh& m, const PointIndex& index, const ShrinkWrapOptions& o) {
-  const PointCloud& pc = index.points();
   const Adjacency adj = vertex_adjacency(m);
   const size_t n = m.vertex_count();
   double mean_edge = 0;
@@ -56,10 +55,11 @@ ShrinkWrapStats shrink_wrap(TriangleMesh& m, const PointIndex& index, const Shri
   // check per vertex cannot see two sheets of a thin part meeting.  (Every
   // iteration would be safer still but doubles the time.)
   std::vector<float> safe = m.positions;
-  // Each vertex's nearest point, the next search's starting bound.  Any
-  // point gives the same answer (a search keeps the nearest it meets, the
-  // first in the tree's order among equals, and the bound only skips
-  // subtrees with nothing as near): the first iteration starts from the
+  // Each vertex's nearest point (its slot in the grid below), the next
+  // search's starting bound.  Any point gives the same answer (a search
+  // keeps the nearest it meets, the first in the tree's order among
+  // equals, and the bound only skips subtrees with nothing as near): the
+  // first iteration starts from the
   // previous vertex's, near by since the shell numbers its vertices cell
   // by cell, instead of a search from scratch per vertex beforehand.
   constexpr uint32_t kNoHint = UINT32_MAX;
@@ -76,9 +76,10 @@ ShrinkWrapStats shrink_wrap(TriangleMesh& m, const PointIndex& index, const Shri
       const float* p = &m.positions[3 * v];
       // Projection: part of the way to the closest point.
       const uint32_t from = hint[v] != kNoHint ? hint[v] : v > 0 ? hint[v - 1] : kNoHint;
-      const uint32_t c = hint[v] = from != kNoHint ? grid.nearest(p, from) : index.nearest(p);
+      const uint32_t c = hint[v] = from != kNoHint ? grid.nearest_slot(p, from) : grid.slot_of(index.nearest(p));
+      const float* cp = grid.slot_xyz(c);
       double q[3];
-      for (int a = 0; a < 3; ++a) q[a] = p[a] + o.step * (pc.xyz[3 * c + a] - p[a]);
+      for (int a = 0; a < 3; ++a) q[a] = p[a] + o.step * (cp[a] - p[a]);
       // Smoothing: towards the neighbours' average within the tangent plane
       // only, so triangles even out without the mesh shrinking away.
       double avg[3] = {0, 0, 0};
@@ -129,9 +130,9 @@ ShrinkWrapStats shrink_wrap(TriangleMesh& m, const PointIndex& index, const Shri
     const float* p = &m.positions[3 * v];
     // From the last iteration's nearest point: the same distance as a
     // search from scratch (which cost 4% of the bunny's control mesh).
-    const uint32_t c = hint[v] != kNoHint ? grid.nearest(p, hint[v]) : index.nearest(p);
+    const float* cp = grid.slot_xyz(hint[v] != kNoHint ? grid.nearest_slot(p, hint[v]) : grid.slot_of(index.nearest(p)));
     double d2 = 0;
-    for (int a = 0; a < 3; ++a) d2 += std::pow(pc.xyz[3 * c + a] - p[a], 2);
+    for (int a = 0; a < 3; ++a) d2 += std::pow(cp[a] - p[a], 2);
     sum += std::sqrt(d2);
     worst = std::max(worst, std::sqrt(d2));
   }
