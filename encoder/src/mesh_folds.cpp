@@ -183,8 +183,10 @@ size_t count_foldovers(const TriangleMesh& m, double max_angle_degrees) {
 }
 
 size_t untangle_folds(TriangleMesh& m, int rounds, bool coarse) {
-  const Adjacency adj = vertex_adjacency(m);
-  const Rim rim = rim_neighbours(m);
+  return untangle_folds(m, vertex_adjacency(m), rim_neighbours(m), rounds, coarse);
+}
+
+size_t untangle_folds(TriangleMesh& m, const Adjacency& adj, const Rim& rim, int rounds, bool coarse) {
   size_t met = 0;
   // The rounds move vertices only: the edges' sides are found once.
   const EdgeSides sides = edge_sides(m);

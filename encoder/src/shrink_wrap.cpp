@@ -59,9 +59,9 @@ ShrinkWrapStats shrink_wrap(TriangleMesh& m, const PointIndex& index, const Shri
   // search's starting bound.  Any point gives the same answer (a search
   // keeps the nearest it meets, the first in the tree's order among
   // equals, and the bound only skips subtrees with nothing as near): the
-  // first iteration starts from the
-  // previous vertex's, near by since the shell numbers its vertices cell
-  // by cell, instead of a search from scratch per vertex beforehand.
+  // first iteration starts from the previous vertex's, near by since the
+  // shell numbers its vertices cell by cell, instead of a search from
+  // scratch per vertex beforehand.
   constexpr uint32_t kNoHint = UINT32_MAX;
   std::vector<uint32_t> hint(n, kNoHint);
   // The warm-started searches on a grid of cells about an edge long (the
@@ -119,7 +119,7 @@ ShrinkWrapStats shrink_wrap(TriangleMesh& m, const PointIndex& index, const Shri
     if (converged) break;
   }
   // `safe` is the state the loop left (its last pass always checks).
-  stats.untangled = untangle_folds(m);
+  stats.untangled = untangle_folds(m, adj, rim);
   // With no fold met nothing moved since the loop's last check, which left
   // no crossings: the search for them is skipped.  Otherwise only the
   // triangles the untangling moved can cross (on the bunny 35k, a search
