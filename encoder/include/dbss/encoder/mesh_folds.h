@@ -42,5 +42,9 @@ std::vector<uint32_t> foldover_vertices(const TriangleMesh& m, double max_angle_
 // times its tubes' radius: its level 1 lay 3.1e-2 of the diagonal from the
 // points.)
 size_t untangle_folds(TriangleMesh& m, int rounds = 8, bool coarse = false);
+// The same with the mesh's vertex_adjacency and rim_neighbours given (a
+// caller that moved vertices only has them: shrink-wrap).
+size_t untangle_folds(TriangleMesh& m, const Adjacency& adj, const std::vector<std::array<uint32_t, 2>>& rim, int rounds = 8,
+                      bool coarse = false);
 
 }  // namespace dbss
