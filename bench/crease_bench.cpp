@@ -18,6 +18,9 @@
 //   --against-no-valence-flips: likewise without the flips toward valence 6 beside the lines
 //     (CreaseOptions::valence_flips), the relaxation after them, untag_flat and relax_beside_lines:
 //     the ninth session's before/after (its 'off' columns are main's defaults at 8722690)
+//   --against-no-flat-corners: likewise without the corner tags on flat, irregular fans
+//     (CreaseOptions::flat_corners): the tenth session's before/after
+//   --flat-fan DEG: CreaseOptions::flat_fan_degrees (how flat a fan must be for that tag)
 //   CREASE_BENCH_AFTER="vflips=0 beside=1 relax_after=0 untag_flat=1" (environment): the 'on' run's
 //     valence_flips, relax_beside_lines and relax_after_flips set so, for trying combinations
 //   --against-no-wedge: likewise without the wedge sampling next to creases (CreaseOptions::wedge)
@@ -105,9 +108,9 @@ struct Run {
 int main(int argc, char** argv) {
   size_t points = 40000, samples = 200000;
   uint32_t levels = 4, seed = 1;
-  double angle = 30;
+  double angle = 30, flat_fan = dbss::CreaseOptions{}.flat_fan_degrees;
   std::vector<std::string> shapes;
-  bool skip_absent = false, shaping = true, split = false, against_no_collapse = false, against_no_wedge = false, against_no_relax = false, against_beside = false, against_no_gate = false, against_no_vflips = false, fixed_control = false, collapse = false;
+  bool skip_absent = false, shaping = true, split = false, against_no_collapse = false, against_no_wedge = false, against_no_relax = false, against_beside = false, against_no_gate = false, against_no_vflips = false, against_no_flat_corners = false, fixed_control = false, collapse = false;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--points" && i + 1 < argc) points = std::strtoull(argv[++i], nullptr, 10);
@@ -125,6 +128,8 @@ int main(int argc, char** argv) {
     else if (a == "--against-relax-beside") against_beside = true;
     else if (a == "--against-no-wedge-gate") against_no_gate = true;
     else if (a == "--against-no-valence-flips") against_no_vflips = true;
+    else if (a == "--against-no-flat-corners") against_no_flat_corners = true;
+    else if (a == "--flat-fan" && i + 1 < argc) flat_fan = std::atof(argv[++i]);
     else if (a == "--collapse") collapse = true;
     else if (!a.empty() && a[0] == '-') return std::fprintf(stderr, "crease_bench: unknown option %s\n", a.c_str()), 1;
     else shapes.push_back(a);
@@ -162,7 +167,7 @@ int main(int argc, char** argv) {
     for (int on = 0; on < 2; ++on) {
       dbss::EncodeOptions eo;
       eo.levels = levels;
-      const bool against = against_no_collapse || against_no_wedge || against_no_relax || against_beside || against_no_gate || against_no_vflips;
+      const bool against = against_no_collapse || against_no_wedge || against_no_relax || against_beside || against_no_gate || against_no_vflips || against_no_flat_corners;
       eo.creases.angle_degrees = on || against ? angle : 0;
       // 'on': the defaults (with --collapse, collapses too); 'off' with an
       // --against-no-X: the same less X.
@@ -174,6 +179,8 @@ int main(int argc, char** argv) {
       eo.creases.wedge_gate = defaults.wedge_gate && (on || !against_no_gate);
       eo.creases.valence_flips = defaults.valence_flips && (on || !against_no_vflips);
       eo.creases.untag_flat = defaults.untag_flat && (on || !against_no_vflips);
+      eo.creases.flat_corners = defaults.flat_corners && (on || !against_no_flat_corners);
+      eo.creases.flat_fan_degrees = flat_fan;
       if (const char* after = std::getenv("CREASE_BENCH_AFTER"); after != nullptr && on) {
         const std::string a = after;
         const auto flag = [&](const char* name, bool& b) {
@@ -238,12 +245,12 @@ int main(int argc, char** argv) {
     }
     const Run& r = runs[1];
     std::printf("### %s\n", shape.c_str());
-    for (int on = against_no_collapse || against_no_wedge || against_no_relax || against_beside || against_no_gate || against_no_vflips ? 0 : 1; on < 2; ++on) {
+    for (int on = against_no_collapse || against_no_wedge || against_no_relax || against_beside || against_no_gate || against_no_vflips || against_no_flat_corners ? 0 : 1; on < 2; ++on) {
       const dbss::CreaseStats& s = runs[on].stats;
-      if (against_no_collapse || against_no_wedge || against_no_relax || against_beside || against_no_gate || against_no_vflips) std::printf("%s: ", on ? "after" : "before");
+      if (against_no_collapse || against_no_wedge || against_no_relax || against_beside || against_no_gate || against_no_vflips || against_no_flat_corners) std::printf("%s: ", on ? "after" : "before");
       std::printf("aligned: %zu vertices moved onto feature lines, %zu merged into a neighbour on one, %zu flat-face moves, %zu flat edges flipped toward valence 6, %zu edges flipped and %zu split along "
-                  "them, %zu chain edges; creases: %zu edges, %zu corners, %zu darts, feature length %.3f; tags %zu bytes\n",
-                  s.aligned, s.align_collapses, s.align_relaxed, s.align_valence_flips, s.align_flips, s.align_splits, s.chain_edges, s.creases, s.corners, s.darts,
+                  "them, %zu chain edges; creases: %zu edges, %zu corners (%zu on flat fans), %zu darts, feature length %.3f; tags %zu bytes\n",
+                  s.aligned, s.align_collapses, s.align_relaxed, s.align_valence_flips, s.align_flips, s.align_splits, s.chain_edges, s.creases, s.corners + s.flat_corners, s.flat_corners, s.darts,
                   runs[on].length / diag, runs[on].tag_bytes);
     }
     std::printf("control mesh: off: %s; on: %s\n", runs[0].choice.c_str(), runs[1].choice.c_str());

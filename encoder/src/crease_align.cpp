@@ -548,6 +548,24 @@ void align_to_features(TriangleMesh& m, const PointIndex& points, const CreaseOp
       if (m.triangles[3 * f + k] != a && m.triangles[3 * f + k] != b) return m.triangles[3 * f + k];
     return a;
   };
+  // The flip of edge c-d of triangles f = (c, d, u) and g = (d, c, w) to
+  // u-w: f becomes (u, c, w), g (w, d, u); the edge map and valences follow,
+  // and `tris` (each vertex's triangles) when given: f leaves d for w, g
+  // leaves c for u.  Steps 3 and 3b differ only in which edges they flip.
+  const auto flip_edge = [&](uint32_t f, uint32_t g, uint32_t c, uint32_t d, uint32_t u, uint32_t w,
+                             std::vector<std::vector<uint32_t>>* tris) {
+    edge.erase(key(c, d)), edge.erase(key(d, c));
+    m.triangles[3 * f] = u, m.triangles[3 * f + 1] = c, m.triangles[3 * f + 2] = w;
+    m.triangles[3 * g] = w, m.triangles[3 * g + 1] = d, m.triangles[3 * g + 2] = u;
+    edge[key(u, c)] = f, edge[key(c, w)] = f, edge[key(w, u)] = f;
+    edge[key(w, d)] = g, edge[key(d, u)] = g, edge[key(u, w)] = g;
+    --valence[c], --valence[d], ++valence[u], ++valence[w];
+    if (tris) {
+      auto& t = *tris;
+      t[d].erase(std::find(t[d].begin(), t[d].end(), f)), t[c].erase(std::find(t[c].begin(), t[c].end(), g));
+      t[w].push_back(f), t[u].push_back(g);
+    }
+  };
   for (int pass = 0; pass < 4; ++pass) {
     size_t flips = 0;
     for (uint32_t f = 0; f < m.triangle_count(); ++f)
@@ -563,13 +581,7 @@ void align_to_features(TriangleMesh& m, const PointIndex& points, const CreaseOp
                                face_normal(m, f)[2] + face_normal(m, g)[2]});
         if (quality(pu, pc, pw) < 0.05 || quality(pw, pd, pu) < 0.05) continue;
         if (dot(unit(cross(sub(pc, pu), sub(pw, pu))), old) <= 0 || dot(unit(cross(sub(pd, pw), sub(pu, pw))), old) <= 0) continue;
-        // f = (c, d, u) -> (u, c, w); g = (d, c, w) -> (w, d, u).
-        edge.erase(key(c, d)), edge.erase(key(d, c));
-        m.triangles[3 * f] = u, m.triangles[3 * f + 1] = c, m.triangles[3 * f + 2] = w;
-        m.triangles[3 * g] = w, m.triangles[3 * g + 1] = d, m.triangles[3 * g + 2] = u;
-        edge[key(u, c)] = f, edge[key(c, w)] = f, edge[key(w, u)] = f;
-        edge[key(w, d)] = g, edge[key(d, u)] = g, edge[key(u, w)] = g;
-        --valence[c], --valence[d], ++valence[u], ++valence[w];
+        flip_edge(f, g, c, d, u, w, nullptr);
         ++flips;
         k = 3;  // f changed: on to the next triangle
       }
@@ -632,15 +644,7 @@ void align_to_features(TriangleMesh& m, const PointIndex& points, const CreaseOp
           const double q1 = quality(pu, pc, pw), q2 = quality(pw, pd, pu);
           if (std::min(q1, q2) < std::min(worst, kMinQuality)) continue;
           if (dot(unit(cross(sub(pc, pu), sub(pw, pu))), nf) <= 0 || dot(unit(cross(sub(pd, pw), sub(pu, pw))), nf) <= 0) continue;
-          edge.erase(key(c, d)), edge.erase(key(d, c));
-          m.triangles[3 * f] = u, m.triangles[3 * f + 1] = c, m.triangles[3 * f + 2] = w;
-          m.triangles[3 * g] = w, m.triangles[3 * g + 1] = d, m.triangles[3 * g + 2] = u;
-          edge[key(u, c)] = f, edge[key(c, w)] = f, edge[key(w, u)] = f;
-          edge[key(w, d)] = g, edge[key(d, u)] = g, edge[key(u, w)] = g;
-          --valence[c], --valence[d], ++valence[u], ++valence[w];
-          // f leaves d for w, g leaves c for u.
-          tris[d].erase(std::find(tris[d].begin(), tris[d].end(), f)), tris[c].erase(std::find(tris[c].begin(), tris[c].end(), g));
-          tris[w].push_back(f), tris[u].push_back(g);
+          flip_edge(f, g, c, d, u, w, &tris);
           ++flips;
           k = 3;
         }

@@ -86,6 +86,22 @@ struct CreaseOptions {
   // 3's error rose on the cylinder (+13% against +6%) and fandisk (-4%
   // against -9%) at seed 1 (bench/crease_bench.md, ninth session).
   bool untag_flat = false;
+  // Tag as corners the smooth control vertices (no crease edge) of valence
+  // other than 6 whose triangles lie within flat_fan_degrees of one plane,
+  // where the extraordinary rule puts a stencil point of their edges over a
+  // quarter of the edge from its midpoint and the tag halves that
+  // (creases.cpp).  A corner is sharp (decoding.md section 3), so the edges
+  // at it take the local eight-point rule instead of the extraordinary
+  // rule, whose ring reaches across a lopsided fan: QEM leaves such
+  // vertices beside the lines (a few short edges to the line, long ones
+  // across the face), and the extraordinary rule put level-1 odd vertices
+  // past the line, in the face's plane, where no displacement along the
+  // normal brings them back (the roof's level-3 Hausdorff distance, 1.2% of
+  // the diagonal at seed 1).  On a flat fan both rules stay in the plane;
+  // the tag costs no byte (CREA's vertex map has a bit for every vertex).
+  // Only when some edge is a crease.
+  bool flat_corners = true;
+  double flat_fan_degrees = 1;
 };
 
 struct CreaseStats {
@@ -100,6 +116,7 @@ struct CreaseStats {
   // (crease_align.h): counts of its vertices moved and edges flipped.
   size_t aligned = 0, align_flips = 0, align_valence_flips = 0, align_splits = 0, align_collapses = 0, align_relaxed = 0;
   size_t chain_edges = 0;  // tagged as joining two aligned vertices along their line
+  size_t flat_corners = 0;  // smooth vertices of flat, irregular fans tagged corner (CreaseOptions::flat_corners)
 };
 
 // First aligns `mesh` to the feature lines (align_to_features: vertices
