@@ -150,7 +150,6 @@ std::vector<PointRim> find_point_rims(const PointIndex& index, size_t max_points
     PointRim r;
     r.centre = plane.point;
     r.axis = plane.normal;
-    r.semi_axes = {std::sqrt(2 * plane.variance[2]), std::sqrt(2 * plane.variance[1])};
     r.points = g.size();
     {
       // The tube's own direction is the one its wall's normals are all

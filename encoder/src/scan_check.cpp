@@ -3,7 +3,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 #include <cstdio>
 #include <vector>
 
@@ -31,17 +30,6 @@ constexpr double kMaxUncovered = 0.05;
 constexpr double kMaxDistance = 3;
 // Largest level (in triangles) the capped-rims test runs its inside tests on.
 constexpr size_t kJoinTestTriangles = size_t{1} << 16;
-// An opening in a wall (a loose rim, point_rims.h, whose points' normals
-// lie along its axis) must be spanned by a closed surface: the surface with
-// no point within kSpanReach 6th-neighbour spacings over the rim's ellipse
-// is about that ellipse shrunk by the reach.  Under kMinSpanned of it, the
-// surface runs in through the opening instead of across it (the carving
-// cut away what the scan missed, with the handle it held).  Hole sweep
-// (scan_bench --hole-sweep, closed): wrong rows 0.10-0.80, right ones 0.76
-// and up (a joined tube beside the opening) or over 2.8.
-constexpr double kSpanReach = 3;
-constexpr double kMinSpanned = 0.6;
-constexpr double kMinWall = 0.8;
 // Points dropped as outliers before a warning.
 constexpr double kMaxDropped = 0.05;
 
@@ -73,40 +61,6 @@ double sampled_points_to_mesh(const PointCloud& pc, const TriangleMesh& mesh, un
   double sum = 0;
   for (double x : d) sum += x;
   return sum / static_cast<double>(m);
-}
-
-// The openings in walls among `rims` that `surface` does not span (see
-// kMinSpanned): per rim, the surface's area with no point within `reach`
-// inside the ball round the rim's centre that holds its ellipse, against
-// the ellipse shrunk by the reach.  Rims whose shrunk ellipse is smaller
-// than a disc of the reach's radius (a ragged spot of a sparse scan) are
-// not judged.
-uint32_t unspanned_openings(const TriangleMesh& surface, const PointIndex& index, const std::vector<PointRim>& rims, double reach) {
-  const PointCloud& pc = index.points();
-  uint32_t count = 0;
-  for (const PointRim& r : rims) {
-    if (r.wall < kMinWall) continue;
-    const double expected = std::numbers::pi * std::max(0.0, r.semi_axes[0] - reach) * std::max(0.0, r.semi_axes[1] - reach);
-    if (expected < std::numbers::pi * reach * reach) continue;
-    const double ball = r.semi_axes[0] + reach;
-    double bare = 0;
-    for (size_t t = 0; t < surface.triangle_count(); ++t) {
-      float centre[3];
-      double from_rim = 0;
-      for (int k = 0; k < 3; ++k) {
-        centre[k] = (surface.positions[3 * surface.triangles[3 * t] + k] + surface.positions[3 * surface.triangles[3 * t + 1] + k] +
-                     surface.positions[3 * surface.triangles[3 * t + 2] + k]) / 3.0f;
-        from_rim += std::pow(centre[k] - r.centre[k], 2);
-      }
-      if (from_rim > ball * ball) continue;
-      const uint32_t p = index.nearest(centre);
-      double d2 = 0;
-      for (int k = 0; k < 3; ++k) d2 += std::pow(centre[k] - double{pc.xyz[3 * p + k]}, 2);
-      if (d2 > reach * reach) bare += triangle_area(surface, t);
-    }
-    count += bare < kMinSpanned * expected;
-  }
-  return count;
 }
 
 std::string fmt(const char* f, double x) {
@@ -198,12 +152,11 @@ ScanCheck check_scan(const Encoding& e, const PointIndex& index, unsigned thread
     for (const PointRim& r : loose_rims)
       if (r.sectors >= RimOptions{}.min_sectors) rims.push_back(r);
     const std::vector<std::pair<size_t, size_t>> pairs = tube_end_pairs(rims), loose_pairs = tube_end_pairs(loose_rims);
-    TriangleMesh test = e.control;
-    for (size_t l = 0; l < e.levels.triangles.size(); ++l)
-      if (e.levels.triangles[l].size() / 3 <= kJoinTestTriangles)
-        test = TriangleMesh{e.levels.positions[l], e.levels.triangles[l]};
-    c.unspanned_openings = unspanned_openings(test, index, loose_rims, kSpanReach * point_spacing(index, 6, 0.5));
     if (!pairs.empty() || !loose_pairs.empty()) {
+      TriangleMesh test = e.control;
+      for (size_t l = 0; l < e.levels.triangles.size(); ++l)
+        if (e.levels.triangles[l].size() / 3 <= kJoinTestTriangles)
+          test = TriangleMesh{e.levels.positions[l], e.levels.triangles[l]};
       for (const auto& [a, b] : pairs) c.capped_rim_pairs += !surface_joins(test, rims[a], rims[b]);
       uint32_t loose_capped = 0;
       for (const auto& [a, b] : loose_pairs) loose_capped += !surface_joins(test, loose_rims[a], loose_rims[b]);
@@ -240,13 +193,6 @@ ScanCheck check_scan(const Encoding& e, const PointIndex& index, unsigned thread
                          "each pair may be the two ends of a handle or limb where the scan missed a band, and capping "
                          "them cuts it (the genus may be too low by as much; a scan of the gap, or --surface open "
                          "to keep the ends as boundaries)");
-  if (c.unspanned_openings > 0)
-    warn("opening", std::to_string(c.unspanned_openings) +
-                        " opening(s) in the scan's walls that the closed surface does not span (under " +
-                        fmt("%.0f%%", 100 * kMinSpanned) +
-                        " of the area across the opening is surface with no point near): it runs in through the "
-                        "opening instead, cutting away what the scan missed (a handle lost, or a dent; a scan of the "
-                        "gap, or --surface open to keep the opening as a boundary)");
   if (c.spacing > 0 && c.points_to_surface > kMaxDistance * c.spacing)
     warn("distance", "the points lie " + fmt("%.1f", c.points_to_surface / c.spacing) +
                          " point spacings from the surface on average (bound " + fmt("%.0f", kMaxDistance) +

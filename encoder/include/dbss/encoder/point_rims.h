@@ -23,9 +23,6 @@ struct PointRim {
   // opening (into the scanned surface the rim bounds).
   std::array<double, 3> axis{};
   double radius = 0;  // mean distance of the rim's points from the centre
-  // Half the rim's extent along its plane's two axes (longest first): an
-  // ellipse's semi-axes from the points' variances (a^2 / 2 along each).
-  std::array<double, 2> semi_axes{};
   // The radius of the tube the rim ends, if it ends one: the rim's points'
   // mean distance from the line through its centre along the direction
   // its points' normals are all square to (the tube's).  A cut that crosses

@@ -33,10 +33,6 @@ struct ScanCheck {
   // two ends of a tube the scan cut through, and that a closed surface caps
   // instead of joining: each may be a lost handle.
   uint32_t capped_rim_pairs = 0;
-  // Openings in the scan's walls (rims whose points' normals lie along
-  // their axis) that a closed surface does not span: it runs in through
-  // them, cutting away what the scan missed (scan_check.cpp).
-  uint32_t unspanned_openings = 0;
   std::vector<ScanWarning> warnings;
 };
 
