@@ -159,7 +159,14 @@ ScanCheck check_scan(const Encoding& e, const PointIndex& index, unsigned thread
           test = TriangleMesh{e.levels.positions[l], e.levels.triangles[l]};
       for (const auto& [a, b] : pairs) c.capped_rim_pairs += !surface_joins(test, rims[a], rims[b]);
       uint32_t loose_capped = 0;
-      for (const auto& [a, b] : loose_pairs) loose_capped += !surface_joins(test, loose_rims[a], loose_rims[b]);
+      for (const auto& [a, b] : loose_pairs) {
+        const PointRim &ra = loose_rims[a], &rb = loose_rims[b];
+        // A pair the strict rims also make keeps tube_end_pairs' rule; one
+        // that needs a looser rim must face as one tube's two ends.
+        const bool strict = ra.sectors >= RimOptions{}.min_sectors && rb.sectors >= RimOptions{}.min_sectors;
+        if (!strict && !rims_face_as_one_tube(ra, rb)) continue;
+        loose_capped += !surface_joins(test, ra, rb);
+      }
       c.capped_rim_pairs = std::max(c.capped_rim_pairs, loose_capped);
     }
   }
