@@ -144,6 +144,9 @@ ScanCheck check_scan(const Encoding& e, const PointIndex& index, unsigned thread
   // looser rims are only warned about, never joined: at 4,000 points they
   // also pair two rims round bands the surface did bridge (two right rows
   // warned), which a join would rebuild the control mesh for in vain.
+  // Those two were arcs of a band's side: a pair that needs a loose rim
+  // must also have both rims facing each other and tube radii within 0.75
+  // of each other (rims_face_as_one_tube), and neither is warned now.
   if (!c.open && info.components > 0) {
     RimOptions loose;
     loose.min_sectors = 7;

@@ -65,7 +65,8 @@ std::vector<std::pair<size_t, size_t>> tube_end_pairs(const std::vector<PointRim
 // Whether a pair of rims from tube_end_pairs is held to the stricter rule
 // the self-check's looser rims (RimOptions::min_sectors 7) must meet: each
 // rim faces the other across the gap (tube_end_pairs asks it of one), and
-// their tube radii agree within kSameTube (both ends of one cut tube).  A
+// their tube radii agree within a factor of 0.75 (both ends of one cut
+// tube).  A
 // sparse rim is often an arc of a band's side, not a cut tube's end.
 bool rims_face_as_one_tube(const PointRim& a, const PointRim& b);
 
