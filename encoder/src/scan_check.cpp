@@ -144,6 +144,9 @@ ScanCheck check_scan(const Encoding& e, const PointIndex& index, unsigned thread
   // looser rims are only warned about, never joined: at 4,000 points they
   // also pair two rims round bands the surface did bridge (two right rows
   // warned), which a join would rebuild the control mesh for in vain.
+  // Those two were arcs of a band's side: a pair that needs a loose rim
+  // must also have both rims facing each other and tube radii within 0.75
+  // of each other (rims_face_as_one_tube), and neither is warned now.
   if (!c.open && info.components > 0) {
     RimOptions loose;
     loose.min_sectors = 7;
@@ -159,7 +162,14 @@ ScanCheck check_scan(const Encoding& e, const PointIndex& index, unsigned thread
           test = TriangleMesh{e.levels.positions[l], e.levels.triangles[l]};
       for (const auto& [a, b] : pairs) c.capped_rim_pairs += !surface_joins(test, rims[a], rims[b]);
       uint32_t loose_capped = 0;
-      for (const auto& [a, b] : loose_pairs) loose_capped += !surface_joins(test, loose_rims[a], loose_rims[b]);
+      for (const auto& [a, b] : loose_pairs) {
+        const PointRim &ra = loose_rims[a], &rb = loose_rims[b];
+        // A pair the strict rims also make keeps tube_end_pairs' rule; one
+        // that needs a looser rim must face as one tube's two ends.
+        const bool strict = ra.sectors >= RimOptions{}.min_sectors && rb.sectors >= RimOptions{}.min_sectors;
+        if (!strict && !rims_face_as_one_tube(ra, rb)) continue;
+        loose_capped += !surface_joins(test, ra, rb);
+      }
       c.capped_rim_pairs = std::max(c.capped_rim_pairs, loose_capped);
     }
   }
