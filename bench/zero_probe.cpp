@@ -264,8 +264,6 @@ int main(int argc, char** argv) {
       }
     }
     Prob zero[7][6], sign[3][3], zero0[7], sign0[3];
-    Model rest;  // magnitudes as today
-    Costs mags;
     double zb = 0, sb = 0, zb0 = 0, sb0 = 0;
     size_t against = 0, nz = 0;
     int32_t q1 = 0, q2 = 0;
