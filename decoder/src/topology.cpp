@@ -52,9 +52,22 @@ Result<LevelTopology> build_topology(uint32_t vertex_count, std::span<const uint
     const uint64_t a = t.triangles[h], b = t.triangles[next_half(h)];
     keys[h] = (std::min(a, b) << 32 | std::max(a, b));
   }
-  std::vector<uint32_t> order(halves);
-  for (uint32_t h = 0; h < halves; ++h) order[h] = h;
-  std::sort(order.begin(), order.end(), [&](uint32_t x, uint32_t y) { return keys[x] < keys[y] || (keys[x] == keys[y] && x < y); });
+  // The order is by key, then by half-edge: two stable counting sorts, by
+  // the larger end and then by the smaller, give exactly std::sort's order
+  // in linear time (a third of level 0's topology in the browser was the
+  // comparison sort).
+  std::vector<uint32_t> order(halves), by_max(halves), count(size_t{vertex_count} + 1);
+  const auto counting_pass = [&](const uint32_t* from, uint32_t* to, auto end_of) {
+    std::fill(count.begin(), count.end(), 0u);
+    for (uint32_t i = 0; i < halves; ++i) ++count[end_of(keys[from ? from[i] : i]) + 1];
+    for (uint32_t v = 0; v < vertex_count; ++v) count[v + 1] += count[v];
+    for (uint32_t i = 0; i < halves; ++i) {
+      const uint32_t h = from ? from[i] : i;
+      to[count[end_of(keys[h])]++] = h;
+    }
+  };
+  counting_pass(nullptr, by_max.data(), [](uint64_t k) { return static_cast<uint32_t>(k & 0xFFFFFFFFu); });
+  counting_pass(by_max.data(), order.data(), [](uint64_t k) { return static_cast<uint32_t>(k >> 32); });
   t.twin.assign(halves, kNoHalfEdge);
   for (uint32_t i = 0; i < halves;) {
     uint32_t j = i + 1;
