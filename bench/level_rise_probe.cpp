@@ -7,6 +7,8 @@
 //
 //   level_rise_probe [--seeds 1-7] [--levels 5] [--points 3000] [--noise 0]
 //                    [--shapes torus,double torus] [--truth 20000]
+// With PROBE_VERTICES set, also the mean distance to the truth of the
+// vertices each level added (level 0: the control vertices).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -92,6 +94,18 @@ int main(int argc, char** argv) {
         }
         previous = err;
         if (l == enc.level_count) floor_sum += err;
+      }
+      if (std::getenv("PROBE_VERTICES")) {
+        // Mean |distance| to the truth of the vertices each level added (level 0: the control vertices).
+        std::printf("  | vertices");
+        size_t from = 0;
+        for (uint32_t l = 0; l <= enc.level_count; ++l) {
+          const std::vector<float>& x = enc.levels.positions[l];
+          double sum = 0;
+          for (size_t v = from; v < x.size() / 3; ++v) sum += std::abs(s.sdf(x[3 * v], x[3 * v + 1], x[3 * v + 2]));
+          std::printf(" %.2e", sum / static_cast<double>(x.size() / 3 - from) / enc.diagonal);
+          from = x.size() / 3;
+        }
       }
       std::printf("  | floor %.3e | KB", previous);
       for (uint32_t l = 0; l <= enc.level_count; ++l) std::printf(" %.1f", prefix_bytes(enc, l) / 1000.0);
