@@ -6,7 +6,7 @@
 // little: this prints every seed and the worst ratio per level.
 //
 //   level_rise_probe [--seeds 1-7] [--levels 5] [--points 3000] [--noise 0]
-//                    [--shapes torus,double torus] [--truth 20000]
+//                    [--shapes torus,double torus] [--truth 20000] [--smoothing 1]
 // With PROBE_VERTICES set, also the mean distance to the truth of the
 // vertices each level added (level 0: the control vertices).
 #include <algorithm>
@@ -42,6 +42,7 @@ int main(int argc, char** argv) {
   uint32_t first = 1, last = 7, levels = 5;
   size_t points = 3000, truth_count = 20000;
   double noise = 0;
+  bool smoothing = false;
   std::vector<std::string> names = {"torus", "double torus"};
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string a = argv[i], v = argv[i + 1];
@@ -52,6 +53,7 @@ int main(int argc, char** argv) {
     } else if (a == "--levels") levels = static_cast<uint32_t>(std::atoi(v.c_str()));
     else if (a == "--points") points = std::strtoull(v.c_str(), nullptr, 10);
     else if (a == "--noise") noise = std::atof(v.c_str());
+    else if (a == "--smoothing") smoothing = v == "1";
     else if (a == "--truth") truth_count = std::strtoull(v.c_str(), nullptr, 10);
     else if (a == "--shapes") {
       names.clear();
@@ -78,6 +80,7 @@ int main(int argc, char** argv) {
       }
       EncodeOptions o;
       o.levels = levels;
+      o.smooth_noise = smoothing;
       auto e = encode_points(pc, o);
       if (!e.ok()) {
         std::printf("%s seed %u: %s\n", s.name, seed, e.status().message().c_str());
