@@ -143,6 +143,7 @@ Status encode_over_control(Encoding& e, const PointIndex& index, const EncodeOpt
   lo.creases = c.creases;
   lo.wedge = o.creases.wedge;
   lo.wedge_gate = o.creases.wedge_gate;
+  lo.smooth_noise = o.smooth_noise;
   if (o.on_progress)
     lo.on_level = [&](uint32_t l) {
       o.on_progress("sampling level " + std::to_string(l) + " of " + std::to_string(level_count));

@@ -9,6 +9,7 @@
 #include "dbss/decoder/level_refiner.h"
 #include "dbss/encoder/crease_align.h"
 #include "dbss/encoder/crease_lines.h"
+#include "dbss/encoder/displacement_smoothing.h"
 #include "dbss/encoder/quantize.h"
 #include "dbss/encoder/rdo_quantize.h"
 #include "dbss/encoder/sampling.h"
@@ -103,6 +104,7 @@ Result<EncodedLevels> encode_levels(const TriangleMesh& control, const PointInde
     scratch->give(mine);
     return s;
   };
+  if (o.smooth_noise && widen) sampler.smoothing = kNeighbourWeight, sampler.smooth_from = kSmoothFromLevel;
   const size_t point_count = points.points().size();
   sampler.dead_zone = [point_count](size_t odd, size_t even) { return dead_zone_steps(odd, point_count, even); };
   return encode_levels(control, sampler, o);
@@ -132,6 +134,11 @@ Result<EncodedLevels> encode_levels(const TriangleMesh& control, const LevelSamp
     // With rate-distortion optimised quantization, each odd vertex's
     // displacement over the step, and which ones must keep their rounding.
     const bool rdo = o.rdo_lambda > 0 && l >= o.rdo_first_level && o.creases.empty();
+    // Smoothing: a first pass on a copy samples every odd vertex, the
+    // averaged displacements are then rounded as `choose` would have.
+    const bool smooth = sampler.smoothing > 0 && !rdo && o.creases.empty() && l >= sampler.smooth_from && !std::isinf(dead_zone);
+    std::vector<double> sampled(smooth ? odd : 0, 0.0), zones(smooth ? odd : 0, 0.5);
+    std::vector<uint8_t> sampled_ok(smooth ? odd : 0, 0);
     std::vector<double> scaled(rdo ? odd : 0, 0.0);
     std::vector<uint8_t> keep(rdo ? odd : 0, 1);
     // The decoder's own step: it computes each odd vertex's undisplaced
@@ -153,6 +160,7 @@ Result<EncodedLevels> encode_levels(const TriangleMesh& control, const LevelSamp
       // The format's range caps q too; counted with the sampler's clamps.
       clamped[e] = s.clamped || q.clamped;
       magnitude[e] = std::abs(s.distance);
+      if (smooth) sampled[e] = s.distance, zones[e] = zone, sampled_ok[e] = !clamped[e];
       if (rdo) {
         scaled[e] = s.distance / step;
         // Only plain rounding is weighed: a dead zone's or a clamp's value stays.
@@ -174,6 +182,16 @@ Result<EncodedLevels> encode_levels(const TriangleMesh& control, const LevelSamp
       dry.value().refine(choose, step, rounded, std::max(1u, o.threads));
       planned = rdo_quantize(scaled, rounded, keep, o.rdo_lambda, 2, &rdo_stats);
     }
+    if (smooth) {
+      auto dry = LevelRefiner::create(TriangleMesh{std::vector<float>(r.positions().begin(), r.positions().end()),
+                                                   std::vector<uint32_t>(r.triangles().begin(), r.triangles().end())});
+      if (!dry.ok()) return dry.status();
+      std::vector<int32_t> rounded;
+      dry.value().refine(choose, step, rounded, std::max(1u, o.threads));
+      const std::vector<double> averaged = smooth_displacements(dry.value().triangles(), even, sampled, sampled_ok, sampler.smoothing);
+      planned.assign(odd, 0);
+      for (size_t e = 0; e < odd; ++e) planned[e] = sampled_ok[e] ? quantize(averaged[e], step, zones[e]).q : rounded[e];
+    }
     const OddChooser chosen = [&](uint32_t e, const double*, const double*, const float*, const float*) { return planned[e]; };
     format::Level level;
     level.index = static_cast<uint8_t>(l);
@@ -191,7 +209,7 @@ Result<EncodedLevels> encode_levels(const TriangleMesh& control, const LevelSamp
       boundary_clamped += q.clamped;
       return q.q;
     };
-    const OddChooser& odd_choice = rdo ? chosen : choose;
+    const OddChooser& odd_choice = rdo || smooth ? chosen : choose;
     if (sampler.boundary)
       r.refine(odd_choice, step, level.q, bchoose, step, bq, std::max(1u, o.threads));
     else

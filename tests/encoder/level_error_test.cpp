@@ -7,6 +7,7 @@
 #include <cmath>
 #include <random>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "../sampled_shapes.h"
@@ -31,17 +32,24 @@ double two_sided(const TriangleMesh& level, const test::Shape& s, const std::vec
   return 0.5 * (to_truth / static_cast<double>(on_level.size() / 3) + to_level / static_cast<double>(truth_points.size() / 3));
 }
 
-// A shape's scan of `points` points and, from another seed, 20,000 points of
-// its true surface for two_sided.
+// A shape's scan of `points` points (sampling seed `seed`) and, from another
+// seed, kTruthPoints points of its true surface for two_sided.
 struct Scan {
   PointCloud points;
   std::vector<double> truth;
 };
 
-Scan scan_of(const test::Shape& s, size_t points) {
+// The measure's own noise must sit well under the 2% it checks: with 20,000
+// samples a side, level 5 of the sparse tori came out 2.0-3.1% farther than
+// level 4 on 3 of 14 sampling seeds (torus 5 and 6, double torus 2 and 4),
+// and 0.0-1.6% on all 14 with 200,000 (bench/level_rise_probe): the same
+// meshes, a mean over ten times the samples.
+constexpr size_t kTruthPoints = 200000;
+
+Scan scan_of(const test::Shape& s, size_t points, uint32_t seed = 7) {
   Scan scan;
-  scan.points = test::sample_sdf(s.sdf, s.lo, s.hi, points);
-  const PointCloud truth = test::sample_sdf(s.sdf, s.lo, s.hi, 20000, 99);
+  scan.points = test::sample_sdf(s.sdf, s.lo, s.hi, points, seed);
+  const PointCloud truth = test::sample_sdf(s.sdf, s.lo, s.hi, kTruthPoints, 99);
   scan.truth.assign(truth.xyz.begin(), truth.xyz.end());
   return scan;
 }
@@ -59,12 +67,14 @@ TEST_CASE("levels against the true surface: no level farther than the one before
   // than points, so levels 3-5 are past the points' density.  Before issue
   // 15's fixes the fit's own error was coded as detail there and the error
   // rose from level to level.
+  // Seed 7 for both, and the seed of each that rose most with 20,000
+  // samples a side (torus 6: 3.1%, double torus 4: 2.3%).
   const std::vector<test::Shape> shapes = test::genus_shapes();
-  for (const test::Shape& s : shapes) {
-    const std::string name = s.name;
-    if (name != "torus" && name != "double torus") continue;
-    INFO(name);
-    const Scan scan = scan_of(s, 3000);
+  const std::vector<std::pair<std::string, uint32_t>> cases = {{"torus", 7}, {"torus", 6}, {"double torus", 7}, {"double torus", 4}};
+  for (const auto& [name, seed] : cases) {
+    const test::Shape& s = *std::find_if(shapes.begin(), shapes.end(), [&](const test::Shape& x) { return name == x.name; });
+    INFO(name << ", seed " << seed);
+    const Scan scan = scan_of(s, 3000, seed);
     const PointCloud& pc = scan.points;
     EncodeOptions o;
     o.levels = 5;

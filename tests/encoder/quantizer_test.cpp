@@ -9,9 +9,11 @@
 #include <cmath>
 #include <numbers>
 #include <random>
+#include <vector>
 
 #include "../shapes.h"
 #include "dbss/decoder/topology.h"
+#include "dbss/encoder/displacement_smoothing.h"
 #include "dbss/encoder/levels.h"
 #include "dbss/encoder/quantize.h"
 #include "dbss/encoder/sampling.h"
@@ -262,4 +264,27 @@ TEST_CASE("sampler on a thin part: a triangle bridging its two faces is no sampl
     }
   CAPTURE(probes, off);
   CHECK(off == 0);
+}
+
+TEST_CASE("smooth_displacements: each odd vertex's value moves toward its odd neighbours' mean") {
+  // Two triangles of a refined level: vertices 0..2 even, 3..6 odd.
+  // Odd 3-4-5 form one triangle, 4-5-6 another (their edges 4-5 shared).
+  const std::vector<uint32_t> tri = {3, 4, 5, 4, 6, 5, 0, 3, 5};
+  const std::vector<double> d = {1.0, 0.0, 0.0, 3.0};
+  std::vector<uint8_t> ok = {1, 1, 1, 1};
+  const std::vector<double> s = smooth_displacements(tri, 3, d, ok, 0.8);
+  // Odd 0 (vertex 3) sees odd 1 and 2 (twice 5 through two triangles: the
+  // mean counts each sighting), values 0: 0.2 * 1 + 0.8 * 0.
+  CHECK(s[0] == Approx(0.2));
+  // Odd 3 (vertex 6) sees odd 1 and 2: 0.2 * 3.
+  CHECK(s[3] == Approx(0.6));
+  // Odd 1 (vertex 4) sees 3 (1.0), 5 twice (0), 6 (3.0): mean 1.0.
+  CHECK(s[1] == Approx(0.8 * 1.0));
+  // A vertex left out neither gives nor takes.
+  ok[3] = 0;
+  const std::vector<double> t = smooth_displacements(tri, 3, d, ok, 0.8);
+  CHECK(t[3] == 3.0);
+  CHECK(t[1] == Approx(0.8 * (1.0 / 3.0)));
+  // Weight 0: the samples as they came.
+  CHECK(smooth_displacements(tri, 3, d, ok, 0.0) == d);
 }

@@ -55,6 +55,12 @@ struct EncodeOptions {
   // points (control_bits_for_error); false: from the step alone
   // (control_bits_for_step), as before.
   bool control_bits_from_level0 = true;
+  // Point path, noisy clouds: each level's displacements from level 2 on
+  // averaged with their neighbours' (displacement_smoothing.h).  Off by
+  // default: it lowers the noisy torus's floor but, through the control
+  // choice, costs the noisy eight 30% more bytes (bench/rd_bench.md, tenth
+  // session).
+  bool smooth_noise = false;
   uint32_t levels = 3;    // displacement levels, 0..kMaxLevelsInFormat, or kAutoLevels
   // Quantization: `step` (model units) when > 0, else derived from `error`
   // (largest rounding error relative to the bounding-box diagonal; step = 2 *
