@@ -80,28 +80,12 @@ TriangleTree::TriangleTree(const TriangleMesh& m) {
   if (nf == 0) return;
   std::vector<uint32_t> order(nf);
   std::iota(order.begin(), order.end(), 0u);
-  // Per triangle, its centroid and its bounds in one record, so a node's
-  // pass reads one record per triangle instead of three indices and nine
-  // floats scattered through the positions (the bounds as floats: a min or
-  // max of floats is one of them, so the nodes' bounds are the same, and
-  // the record is 48 bytes).  Building an 832k-triangle input's tree, once
-  // per level in `dbss encode`'s report before MeshDistanceTo, was the
-  // largest single cost there.
-  struct Record {
-    double centroid[3];
-    float lo[3], hi[3];
-  };
-  std::vector<Record> record(nf);
-  for (size_t f = 0; f < nf; ++f) {
-    Record& r = record[f];
-    for (int a = 0; a < 3; ++a) {
-      const float x = m.positions[3 * size_t{m.triangles[3 * f]} + a], y = m.positions[3 * size_t{m.triangles[3 * f + 1]} + a],
-                  z = m.positions[3 * size_t{m.triangles[3 * f + 2]} + a];
-      r.centroid[a] = (double{x} + y + z) / 3;
-      r.lo[a] = std::min({x, y, z});
-      r.hi[a] = std::max({x, y, z});
-    }
-  }
+  std::vector<double> centroid(3 * nf);
+  for (size_t f = 0; f < nf; ++f)
+    for (int a = 0; a < 3; ++a)
+      centroid[3 * f + a] = (double{m.positions[3 * size_t{m.triangles[3 * f]} + a]} +
+                             m.positions[3 * size_t{m.triangles[3 * f + 1]} + a] +
+                             m.positions[3 * size_t{m.triangles[3 * f + 2]} + a]) / 3;
   // Median splits along the longest axis of the centroids' bounds; nodes are
   // built in a work list so depth never touches the call stack.
   nodes_.reserve(2 * (nf / kLeafSize + 1));
@@ -112,11 +96,13 @@ TriangleTree::TriangleTree(const TriangleMesh& m) {
     for (int a = 0; a < 3; ++a) n.lo[a] = std::numeric_limits<double>::infinity(), n.hi[a] = -n.lo[a];
     double clo[3] = {n.lo[0], n.lo[1], n.lo[2]}, chi[3] = {n.hi[0], n.hi[1], n.hi[2]};
     for (uint32_t j = first; j < first + count; ++j) {
-      const Record& r = record[order[j]];
-      for (int a = 0; a < 3; ++a) {
-        n.lo[a] = std::min(n.lo[a], double{r.lo[a]}), n.hi[a] = std::max(n.hi[a], double{r.hi[a]});
-        clo[a] = std::min(clo[a], r.centroid[a]), chi[a] = std::max(chi[a], r.centroid[a]);
-      }
+      const uint32_t f = order[j];
+      for (int k = 0; k < 3; ++k)
+        for (int a = 0; a < 3; ++a) {
+          const double x = m.positions[3 * size_t{m.triangles[3 * size_t{f} + k]} + a];
+          n.lo[a] = std::min(n.lo[a], x), n.hi[a] = std::max(n.hi[a], x);
+        }
+      for (int a = 0; a < 3; ++a) clo[a] = std::min(clo[a], centroid[3 * f + a]), chi[a] = std::max(chi[a], centroid[3 * f + a]);
     }
     if (count <= kLeafSize) continue;
     int axis = 0;
@@ -124,7 +110,7 @@ TriangleTree::TriangleTree(const TriangleMesh& m) {
       if (chi[a] - clo[a] > chi[axis] - clo[axis]) axis = a;
     const uint32_t half = count / 2;
     std::nth_element(order.begin() + first, order.begin() + first + half, order.begin() + first + count,
-                     [&](uint32_t x, uint32_t y) { return record[x].centroid[axis] < record[y].centroid[axis]; });
+                     [&](uint32_t x, uint32_t y) { return centroid[3 * x + axis] < centroid[3 * y + axis]; });
     const uint32_t child = static_cast<uint32_t>(nodes_.size());
     nodes_[i].first = child;
     nodes_[i].count = 0;
