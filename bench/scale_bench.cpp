@@ -14,7 +14,8 @@
 //        test-data/data/meshes, or a path) Loop-subdivided STEPS times, with
 //        HOLES holes cut after that (triangles with a corner within 4% of the
 //        diagonal of HOLES vertices spread through the vertex list), encoded
-//        by encode_mesh with the defaults (--levels: that many levels).
+//        by encode_mesh with `dbss encode`'s defaults (auto levels; --levels L:
+//        L levels).
 //        Default rows: refined_elephant.off:0 (89k triangles),
 //        armadillo.off:2 (832k), armadillo.off:2:8 (832k with 8 holes).
 //        --write DIR: also writes each row's mesh as DIR/NAME-sSTEPS-hHOLES.ply
@@ -195,7 +196,7 @@ dbss::TriangleMesh cut_holes(const dbss::TriangleMesh& m, uint32_t count) {
       if (dbss::Status st = dbss::write_mesh(out, mesh.value()); !st.ok()) std::fprintf(stderr, "scale_bench: %s\n", st.to_string().c_str());
     }
     dbss::EncodeOptions o;
-    if (levels) o.levels = levels;
+    o.levels = levels ? levels : dbss::kAutoLevels;  // as `dbss encode`: auto levels by default
     o.threads = threads;
     const auto t1 = Clock::now();
     const double c1 = cpu_seconds();
@@ -228,7 +229,7 @@ int run_meshes(std::vector<std::string> specs, uint32_t levels, unsigned threads
   if (specs.empty()) specs = {"refined_elephant.off:0", "armadillo.off:2", "armadillo.off:2:8"};
   std::printf("mesh input (encode_mesh), levels %s, %u threads; times in s (encode: wall and CPU of all threads;\n"
               "prep ctrl draco levels ser: wall), memory in MB (peak RSS of the child: reading, subdividing and encoding)\n",
-              levels ? std::to_string(levels).c_str() : "default", threads);
+              levels ? std::to_string(levels).c_str() : "auto", threads);
   std::printf("| mesh | steps | holes | triangles | loops | encode | cpu | prep | ctrl | draco | levels | ser | L | ctrlF | bytes | peak MB |\n"
               "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (const std::string& text : specs) {
