@@ -9,10 +9,22 @@
 // usage: scale_bench [--levels L] [--threads T] [--keep-outliers] [N...]
 //        (default N: 100000 1000000 10000000; --keep-outliers: the encoder's
 //        outlier stage off, as for data known to be clean)
+//        scale_bench --mesh [--levels L] [--write DIR] [MESH:STEPS[:HOLES]...]
+//        mesh input (issue 18): each row is a libcgal-demo mesh (a name under
+//        test-data/data/meshes, or a path) Loop-subdivided STEPS times, with
+//        HOLES holes cut after that (triangles with a corner within 4% of the
+//        diagonal of HOLES vertices spread through the vertex list), encoded
+//        by encode_mesh with `dbss encode`'s defaults (auto levels; --levels L:
+//        L levels).
+//        Default rows: refined_elephant.off:0 (89k triangles),
+//        armadillo.off:2 (832k), armadillo.off:2:8 (832k with 8 holes).
+//        --write DIR: also writes each row's mesh as DIR/NAME-sSTEPS-hHOLES.ply
+//        (to time `dbss encode` on it).  Exits 77 when a mesh is absent.
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -21,7 +33,11 @@
 #include <string>
 #include <vector>
 
+#include "dbss/decoder/topology.h"
 #include "dbss/encoder/encode.h"
+#include "dbss/encoder/encode_mesh.h"
+#include "dbss/io/geometry_files.h"
+#include "dbss/measure/loop_subdivision.h"
 #include "dbss/measure/surface_samples.h"
 
 namespace {
@@ -108,21 +124,182 @@ struct Row {
   _exit(w == static_cast<ssize_t>(sizeof r) ? 0 : 1);
 }
 
+// --- Mesh input (issue 18) ---
+
+struct MeshRow {
+  double encode = 0, encode_cpu = 0, prepare = 0, control = 0, draco = 0, levels = 0, serialize = 0;
+  size_t triangles = 0, control_faces = 0, bytes = 0, loops = 0;
+  uint32_t level_count = 0;
+  int ok = 0;
+};
+
+struct MeshSpec {
+  std::string path, name;
+  int steps = 0;
+  uint32_t holes = 0;
+};
+
+// Loop subdivision `steps` times: a fixed, finer version of a demo mesh
+// (1-to-4 per step), so a 52k-triangle armadillo stands for an 832k scan.
+dbss::Result<dbss::TriangleMesh> subdivided(dbss::TriangleMesh m, int steps) {
+  for (int s = 0; s < steps; ++s) {
+    auto topo = dbss::build_topology(static_cast<uint32_t>(m.vertex_count()), m.triangles);
+    if (!topo.ok()) return topo.status();
+    std::vector<float> next;
+    dbss::loop_subdivide(topo.value(), m.positions, next);
+    const dbss::LevelTopology child = dbss::refine_topology(topo.value());
+    m.positions = std::move(next);
+    m.triangles = child.triangles;
+  }
+  return m;
+}
+
+double diagonal_of(const dbss::TriangleMesh& m) {
+  double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
+  for (size_t i = 0; i < m.positions.size(); ++i) {
+    lo[i % 3] = std::min(lo[i % 3], double{m.positions[i]});
+    hi[i % 3] = std::max(hi[i % 3], double{m.positions[i]});
+  }
+  return std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) + (hi[2] - lo[2]) * (hi[2] - lo[2]));
+}
+
+// As lod_bench's --cut-holes (4% radius), on the subdivided mesh.
+dbss::TriangleMesh cut_holes(const dbss::TriangleMesh& m, uint32_t count) {
+  const double r = 0.04 * diagonal_of(m), r2 = r * r;
+  std::vector<uint8_t> gone(m.vertex_count(), 0);
+  for (uint32_t k = 1; k <= count; ++k) {
+    const size_t seed = m.vertex_count() * k / (count + 1);
+    for (size_t v = 0; v < m.vertex_count(); ++v) {
+      double d = 0;
+      for (int a = 0; a < 3; ++a) d += std::pow(double(m.positions[3 * v + a]) - m.positions[3 * seed + a], 2);
+      if (d < r2) gone[v] = 1;
+    }
+  }
+  dbss::TriangleMesh out{m.positions, {}};
+  for (size_t f = 0; f < m.triangle_count(); ++f)
+    if (!gone[m.triangles[3 * f]] && !gone[m.triangles[3 * f + 1]] && !gone[m.triangles[3 * f + 2]])
+      out.triangles.insert(out.triangles.end(), m.triangles.begin() + 3 * f, m.triangles.begin() + 3 * f + 3);
+  return out;
+}
+
+// The child: read, subdivide, cut, encode, report through the pipe.  The
+// peak memory covers the generated mesh as well as the encoding.
+[[noreturn]] void mesh_child(const MeshSpec& spec, uint32_t levels, unsigned threads, const std::string& write_dir, int fd) {
+  MeshRow r;
+  auto read = dbss::read_mesh(spec.path);
+  auto mesh = read.ok() ? subdivided(std::move(read).value(), spec.steps) : dbss::Result<dbss::TriangleMesh>(read.status());
+  if (mesh.ok()) {
+    if (spec.holes) mesh.value() = cut_holes(mesh.value(), spec.holes);
+    r.triangles = mesh.value().triangle_count();
+    if (!write_dir.empty()) {
+      const std::string out = write_dir + "/" + spec.name + "-s" + std::to_string(spec.steps) + "-h" + std::to_string(spec.holes) + ".ply";
+      if (dbss::Status st = dbss::write_mesh(out, mesh.value()); !st.ok()) std::fprintf(stderr, "scale_bench: %s\n", st.to_string().c_str());
+    }
+    dbss::EncodeOptions o;
+    o.levels = levels ? levels : dbss::kAutoLevels;  // as `dbss encode`: auto levels by default
+    o.threads = threads;
+    const auto t1 = Clock::now();
+    const double c1 = cpu_seconds();
+    auto e = dbss::encode_mesh(mesh.value(), o);
+    r.encode = std::chrono::duration<double>(Clock::now() - t1).count();
+    r.encode_cpu = cpu_seconds() - c1;
+    if (e.ok()) {
+      const dbss::Encoding& x = e.value().encoding;
+      r.ok = 1;
+      r.prepare = x.seconds.outliers;  // encode_mesh: preparing the input and its triangle tree
+      r.control = x.seconds.control;
+      r.draco = x.seconds.draco;
+      r.levels = x.seconds.levels;
+      r.serialize = x.seconds.serialize;
+      r.level_count = x.level_count;
+      r.control_faces = x.control.triangle_count();
+      r.bytes = x.bytes.size();
+      r.loops = e.value().input_info.boundary_loops;
+    } else {
+      std::fprintf(stderr, "scale_bench: %s: %s\n", spec.name.c_str(), e.status().to_string().c_str());
+    }
+  } else {
+    std::fprintf(stderr, "scale_bench: %s: %s\n", spec.name.c_str(), mesh.status().to_string().c_str());
+  }
+  const ssize_t w = write(fd, &r, sizeof r);
+  _exit(w == static_cast<ssize_t>(sizeof r) ? 0 : 1);
+}
+
+int run_meshes(std::vector<std::string> specs, uint32_t levels, unsigned threads, const std::string& write_dir) {
+  if (specs.empty()) specs = {"refined_elephant.off:0", "armadillo.off:2", "armadillo.off:2:8"};
+  std::printf("mesh input (encode_mesh), levels %s, %u threads; times in s (encode: wall and CPU of all threads;\n"
+              "prep ctrl draco levels ser: wall), memory in MB (peak RSS of the child: reading, subdividing and encoding)\n",
+              levels ? std::to_string(levels).c_str() : "auto", threads);
+  std::printf("| mesh | steps | holes | triangles | loops | encode | cpu | prep | ctrl | draco | levels | ser | L | ctrlF | bytes | peak MB |\n"
+              "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+  for (const std::string& text : specs) {
+    MeshSpec spec;
+    const size_t a = text.find(':');
+    spec.path = text.substr(0, a);
+    if (a != std::string::npos) {
+      const size_t b = text.find(':', a + 1);
+      spec.steps = std::atoi(text.substr(a + 1, b == std::string::npos ? std::string::npos : b - a - 1).c_str());
+      if (b != std::string::npos) spec.holes = static_cast<uint32_t>(std::atoi(text.substr(b + 1).c_str()));
+    }
+    if (spec.path.find('/') == std::string::npos) spec.path = "test-data/data/meshes/" + spec.path;
+    spec.name = spec.path.substr(spec.path.find_last_of('/') + 1);
+    spec.name = spec.name.substr(0, spec.name.find('.'));
+    if (access(spec.path.c_str(), R_OK) != 0) {
+      std::printf("%s: absent (run from the source tree with test-data linked)\n", spec.path.c_str());
+      return 77;
+    }
+    int fds[2];
+    if (pipe(fds) != 0) return std::perror("pipe"), 1;
+    const pid_t pid = fork();
+    if (pid < 0) return std::perror("fork"), 1;
+    if (pid == 0) {
+      close(fds[0]);
+      mesh_child(spec, levels, threads, write_dir, fds[1]);
+    }
+    close(fds[1]);
+    MeshRow r;
+    const ssize_t got = read(fds[0], &r, sizeof r);
+    close(fds[0]);
+    int status = 0;
+    rusage use{};
+    wait4(pid, &status, 0, &use);
+    if (got != static_cast<ssize_t>(sizeof r) || !r.ok) {
+      std::printf("| %s | %d | %u | failed (status %d) |\n", spec.name.c_str(), spec.steps, spec.holes, status);
+      return 1;
+    }
+    std::printf("| %s | %d | %u | %zu | %zu | %.1f | %.1f | %.1f | %.1f | %.1f | %.1f | %.1f | %u | %zu | %zu | %.0f |\n",
+                spec.name.c_str(), spec.steps, spec.holes, r.triangles, r.loops, r.encode, r.encode_cpu, r.prepare, r.control,
+                r.draco, r.levels, r.serialize, r.level_count, r.control_faces, r.bytes, static_cast<double>(use.ru_maxrss) / 1024.0);
+    std::fflush(stdout);
+  }
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-  uint32_t levels = 3;
+  uint32_t levels = 0;  // 0: 3 for points, the encoder's default for meshes
   unsigned threads = 2;
-  bool outliers = true;
+  bool outliers = true, meshes = false;
+  std::string write_dir;
+  std::vector<std::string> mesh_specs;
   std::vector<size_t> sizes;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--levels" && i + 1 < argc) levels = static_cast<uint32_t>(std::atoi(argv[++i]));
     else if (a == "--threads" && i + 1 < argc) threads = static_cast<unsigned>(std::atoi(argv[++i]));
     else if (a == "--keep-outliers") outliers = false;
-    else if (!a.empty() && a[0] != '-') sizes.push_back(std::strtoull(a.c_str(), nullptr, 10));
-    else return std::fprintf(stderr, "usage: scale_bench [--levels L] [--threads T] [--keep-outliers] [N...]\n"), 2;
+    else if (a == "--mesh") meshes = true;
+    else if (a == "--write" && i + 1 < argc) write_dir = argv[++i];
+    else if (!a.empty() && a[0] != '-') {
+      mesh_specs.push_back(a);
+      sizes.push_back(std::strtoull(a.c_str(), nullptr, 10));
+    } else
+      return std::fprintf(stderr, "usage: scale_bench [--levels L] [--threads T] [--keep-outliers] [N...]\n"
+                                  "       scale_bench --mesh [--levels L] [--threads T] [--write DIR] [MESH:STEPS[:HOLES]...]\n"), 2;
   }
+  if (meshes) return run_meshes(mesh_specs, levels, threads, write_dir);
+  if (!levels) levels = 3;
   if (sizes.empty()) sizes = {100000, 1000000, 10000000};
   std::printf("bumpy torus sampled with seed 19, level %u, %u threads, outlier stage %s; times in s (encode: wall and CPU of all threads;\n"
               "outlr ctrl levels check other: wall; grid wrap QEM: CPU), memory in MB (peak RSS of the child)\n",

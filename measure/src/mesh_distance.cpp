@@ -18,16 +18,12 @@ struct OneWay {
   double mean = 0, max = 0;
 };
 
-// Distances from `count` samples of `from` to the surface of `to`.  Each
+// Distances from the points `p` (3 each) to the surface `tree` holds.  Each
 // distance lands in its own slot and the sum runs in sample order, so the
 // thread count never changes the result.
-OneWay one_way(const TriangleMesh& from, const TriangleMesh& to, size_t count, uint32_t seed, unsigned threads) {
-  const double inf = std::numeric_limits<double>::infinity();
-  if (to.triangle_count() == 0) return {inf, inf};
-  const std::vector<double> p = sample_surface(from, count, seed);
+OneWay one_way(const std::vector<double>& p, const TriangleTree& tree, unsigned threads) {
   const size_t n = p.size() / 3;
   if (n == 0) return {};
-  const TriangleTree tree(to);
   std::vector<double> d(n);
   auto run = [&](size_t begin, size_t end) {
     for (size_t i = begin; i < end; ++i) d[i] = tree.distance(&p[3 * i]);
@@ -43,15 +39,26 @@ OneWay one_way(const TriangleMesh& from, const TriangleMesh& to, size_t count, u
   return out;
 }
 
+size_t half_samples(const MeshDistanceOptions& o) { return std::max<size_t>(o.samples / 2, 1); }
+
 }  // namespace
 
-MeshDistance mesh_distance(const TriangleMesh& a, const TriangleMesh& b, const MeshDistanceOptions& options) {
-  const size_t half = std::max<size_t>(options.samples / 2, 1);
-  // Different seeds per side, so a mesh compared with itself is not probed
-  // at the same spots twice.
-  const OneWay ab = one_way(a, b, half, options.seed, options.threads);
-  const OneWay ba = one_way(b, a, half, options.seed + 1, options.threads);
+// Different seeds per side, so a mesh compared with itself is not probed at
+// the same spots twice: a's samples take `seed`, b's `seed + 1`.
+MeshDistanceTo::MeshDistanceTo(const TriangleMesh& b, const MeshDistanceOptions& options)
+    : options_(options), b_triangles_(b.triangle_count()), tree_(b),
+      samples_(sample_surface(b, half_samples(options), options.seed + 1)) {}
+
+MeshDistance MeshDistanceTo::from(const TriangleMesh& a) const {
+  const double inf = std::numeric_limits<double>::infinity();
+  OneWay ab{inf, inf}, ba{inf, inf};
+  if (b_triangles_ > 0) ab = one_way(sample_surface(a, half_samples(options_), options_.seed), tree_, options_.threads);
+  if (a.triangle_count() > 0) ba = one_way(samples_, TriangleTree(a), options_.threads);
   return {ab.mean, ab.max, ba.mean, ba.max};
+}
+
+MeshDistance mesh_distance(const TriangleMesh& a, const TriangleMesh& b, const MeshDistanceOptions& options) {
+  return MeshDistanceTo(b, options).from(a);
 }
 
 }  // namespace dbss
