@@ -71,7 +71,10 @@ TEST_CASE("levels against the true surface: no level farther than the one before
   // samples a side (torus 6: 3.1%, double torus 4: 2.3%).
   const std::vector<test::Shape> shapes = test::genus_shapes();
   const std::vector<std::pair<std::string, uint32_t>> cases = {{"torus", 7}, {"torus", 6}, {"double torus", 7}, {"double torus", 4}};
-  for (const auto& [name, seed] : cases) {
+  for (const auto& c : cases) {
+    // Plain names, not a structured binding: clang 14 cannot capture one in a lambda.
+    const std::string& name = c.first;
+    const uint32_t seed = c.second;
     const test::Shape& s = *std::find_if(shapes.begin(), shapes.end(), [&](const test::Shape& x) { return name == x.name; });
     INFO(name << ", seed " << seed);
     const Scan scan = scan_of(s, 3000, seed);
