@@ -23,6 +23,8 @@
 //   --flat-fan DEG: CreaseOptions::flat_fan_degrees (how flat a fan must be for that tag)
 //   CREASE_BENCH_AFTER="vflips=0 beside=1 relax_after=0 untag_flat=1" (environment): the 'on' run's
 //     valence_flips, relax_beside_lines and relax_after_flips set so, for trying combinations
+//   --on-only: skip the creases-off encode (its columns print zero): for comparing CREASE_BENCH_AFTER
+//     settings run by run at half the cost
 //   --against-no-wedge: likewise without the wedge sampling next to creases (CreaseOptions::wedge)
 //   --against-no-wedge-gate: likewise with the wedge anywhere, not only near tagged edges (CreaseOptions::wedge_gate)
 //   --seed S: the point sampling's seed (default 1): crease figures swing with it (and with
@@ -110,7 +112,7 @@ int main(int argc, char** argv) {
   uint32_t levels = 4, seed = 1;
   double angle = 30, flat_fan = dbss::CreaseOptions{}.flat_fan_degrees;
   std::vector<std::string> shapes;
-  bool skip_absent = false, shaping = true, split = false, against_no_collapse = false, against_no_wedge = false, against_no_relax = false, against_beside = false, against_no_gate = false, against_no_vflips = false, against_no_flat_corners = false, fixed_control = false, collapse = false;
+  bool skip_absent = false, shaping = true, split = false, against_no_collapse = false, against_no_wedge = false, against_no_relax = false, against_beside = false, against_no_gate = false, against_no_vflips = false, against_no_flat_corners = false, fixed_control = false, collapse = false, on_only = false;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--points" && i + 1 < argc) points = std::strtoull(argv[++i], nullptr, 10);
@@ -131,6 +133,7 @@ int main(int argc, char** argv) {
     else if (a == "--against-no-flat-corners") against_no_flat_corners = true;
     else if (a == "--flat-fan" && i + 1 < argc) flat_fan = std::atof(argv[++i]);
     else if (a == "--collapse") collapse = true;
+    else if (a == "--on-only") on_only = true;
     else if (!a.empty() && a[0] == '-') return std::fprintf(stderr, "crease_bench: unknown option %s\n", a.c_str()), 1;
     else shapes.push_back(a);
   }
@@ -164,7 +167,7 @@ int main(int argc, char** argv) {
     dbss::PointCloud pc;
     pc.xyz.assign(p.begin(), p.end());
     Run runs[2];
-    for (int on = 0; on < 2; ++on) {
+    for (int on = on_only ? 1 : 0; on < 2; ++on) {
       dbss::EncodeOptions eo;
       eo.levels = levels;
       const bool against = against_no_collapse || against_no_wedge || against_no_relax || against_beside || against_no_gate || against_no_vflips || against_no_flat_corners;
@@ -269,6 +272,7 @@ int main(int argc, char** argv) {
     std::printf("\n\n");
     std::printf("| level | bytes off | bytes on | error off | error on | Hausdorff off | Hausdorff on | p99 off | p99 on | p99.9 off | p99.9 on |\n");
     std::printf("|---|---|---|---|---|---|---|---|---|---|---|\n");
+    if (on_only) runs[0].bytes.assign(runs[1].bytes.size(), 0), runs[0].mean = runs[0].hausdorff = runs[0].p99 = runs[0].p999 = std::vector<double>(runs[1].bytes.size(), 0.0);
     for (size_t l = 0; l < std::min(runs[0].bytes.size(), runs[1].bytes.size()); ++l)
       std::printf("| %zu | %zu | %zu | %.3e | %.3e | %.2f%% | %.2f%% | %.3f%% | %.3f%% | %.3f%% | %.3f%% |\n", l, runs[0].bytes[l], runs[1].bytes[l],
                   runs[0].mean[l], runs[1].mean[l], 100 * runs[0].hausdorff[l], 100 * runs[1].hausdorff[l], 100 * runs[0].p99[l],
