@@ -225,6 +225,32 @@ dbss::TriangleMesh cut_holes(const dbss::TriangleMesh& m, uint32_t count) {
   _exit(w == static_cast<ssize_t>(sizeof r) ? 0 : 1);
 }
 
+// Runs body(fd) in a child process, which writes one row to fd and exits, so
+// that each row's peak memory (use.ru_maxrss) is its own. False when the pipe,
+// the fork or the child failed.
+template <class Row, class Body>
+bool run_in_child(Body body, Row& row, int& status, rusage& use) {
+  int fds[2];
+  if (pipe(fds) != 0) return std::perror("pipe"), false;
+  const pid_t pid = fork();
+  if (pid < 0) {
+    std::perror("fork");
+    close(fds[0]);
+    close(fds[1]);
+    return false;
+  }
+  if (pid == 0) {
+    close(fds[0]);
+    body(fds[1]);
+  }
+  close(fds[1]);
+  const ssize_t got = read(fds[0], &row, sizeof row);
+  close(fds[0]);
+  status = 0;
+  wait4(pid, &status, 0, &use);
+  return got == static_cast<ssize_t>(sizeof row) && row.ok;
+}
+
 int run_meshes(std::vector<std::string> specs, uint32_t levels, unsigned threads, const std::string& write_dir) {
   if (specs.empty()) specs = {"refined_elephant.off:0", "armadillo.off:2", "armadillo.off:2:8"};
   std::printf("mesh input (encode_mesh), levels %s, %u threads; times in s (encode: wall and CPU of all threads;\n"
@@ -248,22 +274,10 @@ int run_meshes(std::vector<std::string> specs, uint32_t levels, unsigned threads
       std::printf("%s: absent (run from the source tree with test-data linked)\n", spec.path.c_str());
       return 77;
     }
-    int fds[2];
-    if (pipe(fds) != 0) return std::perror("pipe"), 1;
-    const pid_t pid = fork();
-    if (pid < 0) return std::perror("fork"), 1;
-    if (pid == 0) {
-      close(fds[0]);
-      mesh_child(spec, levels, threads, write_dir, fds[1]);
-    }
-    close(fds[1]);
-    MeshRow r;
-    const ssize_t got = read(fds[0], &r, sizeof r);
-    close(fds[0]);
+    MeshRow r{};
     int status = 0;
     rusage use{};
-    wait4(pid, &status, 0, &use);
-    if (got != static_cast<ssize_t>(sizeof r) || !r.ok) {
+    if (!run_in_child([&](int fd) { mesh_child(spec, levels, threads, write_dir, fd); }, r, status, use)) {
       std::printf("| %s | %d | %u | failed (status %d) |\n", spec.name.c_str(), spec.steps, spec.holes, status);
       return 1;
     }
@@ -310,22 +324,10 @@ int main(int argc, char** argv) {
   double previous = 0;
   size_t previous_n = 0;
   for (size_t n : sizes) {
-    int fds[2];
-    if (pipe(fds) != 0) return std::perror("pipe"), 1;
-    const pid_t pid = fork();
-    if (pid < 0) return std::perror("fork"), 1;
-    if (pid == 0) {
-      close(fds[0]);
-      child(n, levels, threads, outliers, fds[1]);
-    }
-    close(fds[1]);
-    Row r;
-    const ssize_t got = read(fds[0], &r, sizeof r);
-    close(fds[0]);
+    Row r{};
     int status = 0;
     rusage use{};
-    wait4(pid, &status, 0, &use);
-    if (got != static_cast<ssize_t>(sizeof r) || !r.ok) {
+    if (!run_in_child([&](int fd) { child(n, levels, threads, outliers, fd); }, r, status, use)) {
       std::printf("%9zu | failed (status %d)\n", n, status);
       continue;
     }
