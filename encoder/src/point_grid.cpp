@@ -14,12 +14,17 @@ PointGrid::PointGrid(const PointIndex& index, double cell) : index_(index) {
     for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], double{pc.xyz[3 * i + a]}), hi[a] = std::max(hi[a], double{pc.xyz[3 * i + a]});
   // A surface fills a thin layer of the box, so most cells stay empty; the
   // cap keeps the offsets array (4 bytes a cell) near the points' size.
-  cell = std::max(cell, 1e-30);
+  // The count is checked in doubles before any cast: a degenerate shell
+  // (no edges, or all its vertices at one spot) asks for a cell of 0 or NaN,
+  // whose counts would overflow int.
+  if (!(cell > 1e-30)) cell = 1e-30;
   for (;;) {
-    for (int a = 0; a < 3; ++a) n_[a] = std::max(1, static_cast<int>((hi[a] - lo[a]) / cell) + 1);
-    if (double(n_[0]) * n_[1] * n_[2] <= 8.0 * n + 64) break;
+    double cells = 1;
+    for (int a = 0; a < 3; ++a) cells *= std::floor((hi[a] - lo[a]) / cell) + 1;
+    if (cells <= 8.0 * n + 64) break;
     cell *= 1.25;
   }
+  for (int a = 0; a < 3; ++a) n_[a] = std::max(1, static_cast<int>((hi[a] - lo[a]) / cell) + 1);
   for (int a = 0; a < 3; ++a) origin_[a] = lo[a];
   per_cell_ = 1 / cell;
   const size_t cells = size_t(n_[0]) * n_[1] * n_[2];
@@ -47,6 +52,8 @@ PointGrid::PointGrid(const PointIndex& index, double cell) : index_(index) {
 uint32_t PointGrid::nearest(const float q[3], uint32_t hint) const { return id_[nearest_slot(q, slot_of_[hint])]; }
 
 uint32_t PointGrid::nearest_slot(const float q[3], uint32_t hint) const {
+  // A non-finite query has no cell: the tree answers it as it always did.
+  if (!(std::isfinite(q[0]) && std::isfinite(q[1]) && std::isfinite(q[2]))) return ++tree_queries_, slot_of_[index_.nearest(q, id_[hint])];
   const float* h = &xyz_[3 * size_t{hint}];
   // Distances as nanoflann's L2_Simple_Adaptor sums them: in float, axis by
   // axis from zero (the build keeps fp-contract off).

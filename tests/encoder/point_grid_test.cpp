@@ -47,3 +47,25 @@ TEST_CASE("PointGrid::nearest equals PointIndex::nearest, ties and far hints inc
     }
   }
 }
+
+// A degenerate shell asks for a cell of 0 or NaN, and a broken vertex can
+// be NaN: the grid must still answer as the tree does (these counts
+// overflowed int, and NaN queries indexed outside the offsets, before).
+TEST_CASE("PointGrid with a cell of zero or NaN and non-finite queries answers as the tree", "[point_grid]") {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> u(-1, 1);
+  PointCloud pc;
+  for (int i = 0; i < 2000; ++i) pc.xyz.insert(pc.xyz.end(), {u(rng), u(rng), u(rng)});
+  const PointIndex index(pc);
+  for (double cell : {0.0, -1.0, std::nan(""), double{INFINITY}}) {
+    const PointGrid grid(index, cell);
+    for (int t = 0; t < 2000; ++t) {
+      const float q[3] = {u(rng), u(rng), u(rng)};
+      const uint32_t hint = static_cast<uint32_t>(t) % 2000;
+      REQUIRE(grid.nearest(q, hint) == index.nearest(q, hint));
+    }
+    const float nan_q[3] = {std::nanf(""), 0, 0}, inf_q[3] = {0, INFINITY, 0};
+    CHECK(grid.nearest(nan_q, 5) == index.nearest(nan_q, 5));
+    CHECK(grid.nearest(inf_q, 5) == index.nearest(inf_q, 5));
+  }
+}
