@@ -33,6 +33,7 @@
 #include "dbss/io/draco_mesh.h"
 #include "dbss/io/geometry_files.h"
 #include "dbss/measure/mesh_distance.h"
+#include "cut_holes.h"
 #include "timing.h"
 
 using namespace dbss;
@@ -79,14 +80,7 @@ MeshEncodeOptions mesh_options(const Args& a) {
   return m;
 }
 
-double diagonal(const TriangleMesh& m) {
-  float lo[3] = {m.positions[0], m.positions[1], m.positions[2]}, hi[3] = {lo[0], lo[1], lo[2]};
-  for (size_t i = 0; i < m.vertex_count(); ++i)
-    for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], m.positions[3 * i + a]), hi[a] = std::max(hi[a], m.positions[3 * i + a]);
-  double d = 0;
-  for (int a = 0; a < 3; ++a) d += (double(hi[a]) - lo[a]) * (double(hi[a]) - lo[a]);
-  return std::sqrt(d);
-}
+using bench::diagonal;
 
 struct DracoResult {
   int qp = 0;
@@ -130,25 +124,7 @@ std::string topo(const MeshInfo& i) {
   return std::to_string(i.components) + " cc, genus " + std::to_string(i.genus) + ", " + std::to_string(i.boundary_loops) + " loops";
 }
 
-// `count` holes cut in a mesh: the triangles with a corner within `radius` (4%) of the
-// diagonal of vertices spread through the vertex list, removed.
-TriangleMesh cut_holes(const TriangleMesh& m, uint32_t count, double radius) {
-  const double r2 = std::pow(radius * diagonal(m), 2);
-  std::vector<uint8_t> gone(m.vertex_count(), 0);
-  for (uint32_t k = 1; k <= count; ++k) {
-    const size_t seed = m.vertex_count() * k / (count + 1);
-    for (size_t v = 0; v < m.vertex_count(); ++v) {
-      double d = 0;
-      for (int a = 0; a < 3; ++a) d += std::pow(double(m.positions[3 * v + a]) - m.positions[3 * seed + a], 2);
-      if (d < r2) gone[v] = 1;
-    }
-  }
-  TriangleMesh out{m.positions, {}};
-  for (size_t f = 0; f < m.triangle_count(); ++f)
-    if (!gone[m.triangles[3 * f]] && !gone[m.triangles[3 * f + 1]] && !gone[m.triangles[3 * f + 2]])
-      out.triangles.insert(out.triangles.end(), m.triangles.begin() + 3 * f, m.triangles.begin() + 3 * f + 3);
-  return out;
-}
+using bench::cut_holes;
 
 // Where a level's bytes and error go: its LEVL bytes per odd vertex, the
 // share of zeros and of |q| = 1, the clamps and the casts that missed (the

@@ -39,6 +39,7 @@
 #include "dbss/io/geometry_files.h"
 #include "dbss/measure/loop_subdivision.h"
 #include "dbss/measure/surface_samples.h"
+#include "cut_holes.h"
 
 namespace {
 
@@ -154,34 +155,6 @@ dbss::Result<dbss::TriangleMesh> subdivided(dbss::TriangleMesh m, int steps) {
   return m;
 }
 
-double diagonal_of(const dbss::TriangleMesh& m) {
-  double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
-  for (size_t i = 0; i < m.positions.size(); ++i) {
-    lo[i % 3] = std::min(lo[i % 3], double{m.positions[i]});
-    hi[i % 3] = std::max(hi[i % 3], double{m.positions[i]});
-  }
-  return std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) + (hi[2] - lo[2]) * (hi[2] - lo[2]));
-}
-
-// As lod_bench's --cut-holes (4% radius), on the subdivided mesh.
-dbss::TriangleMesh cut_holes(const dbss::TriangleMesh& m, uint32_t count) {
-  const double r = 0.04 * diagonal_of(m), r2 = r * r;
-  std::vector<uint8_t> gone(m.vertex_count(), 0);
-  for (uint32_t k = 1; k <= count; ++k) {
-    const size_t seed = m.vertex_count() * k / (count + 1);
-    for (size_t v = 0; v < m.vertex_count(); ++v) {
-      double d = 0;
-      for (int a = 0; a < 3; ++a) d += std::pow(double(m.positions[3 * v + a]) - m.positions[3 * seed + a], 2);
-      if (d < r2) gone[v] = 1;
-    }
-  }
-  dbss::TriangleMesh out{m.positions, {}};
-  for (size_t f = 0; f < m.triangle_count(); ++f)
-    if (!gone[m.triangles[3 * f]] && !gone[m.triangles[3 * f + 1]] && !gone[m.triangles[3 * f + 2]])
-      out.triangles.insert(out.triangles.end(), m.triangles.begin() + 3 * f, m.triangles.begin() + 3 * f + 3);
-  return out;
-}
-
 // The child: read, subdivide, cut, encode, report through the pipe.  The
 // peak memory covers the generated mesh as well as the encoding.
 [[noreturn]] void mesh_child(const MeshSpec& spec, uint32_t levels, unsigned threads, const std::string& write_dir, int fd) {
@@ -189,7 +162,8 @@ dbss::TriangleMesh cut_holes(const dbss::TriangleMesh& m, uint32_t count) {
   auto read = dbss::read_mesh(spec.path);
   auto mesh = read.ok() ? subdivided(std::move(read).value(), spec.steps) : dbss::Result<dbss::TriangleMesh>(read.status());
   if (mesh.ok()) {
-    if (spec.holes) mesh.value() = cut_holes(mesh.value(), spec.holes);
+    // Holes of 4% of the diagonal, as lod_bench's --cut-holes.
+    if (spec.holes) mesh.value() = dbss::bench::cut_holes(mesh.value(), spec.holes, 0.04);
     r.triangles = mesh.value().triangle_count();
     if (!write_dir.empty()) {
       const std::string out = write_dir + "/" + spec.name + "-s" + std::to_string(spec.steps) + "-h" + std::to_string(spec.holes) + ".ply";
