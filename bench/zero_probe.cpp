@@ -103,14 +103,17 @@ int main(int argc, char** argv) {
   std::string path;
   for (int i = 1; i < argc; ++i) {
     std::string a = argv[i];
-    if (a == "--levels") levels = std::atoi(argv[++i]);
-    else if (a == "--error") error = std::atof(argv[++i]);
-    else if (a == "--faces") faces = std::atoi(argv[++i]);
-    else if (a == "--rdo") rdo = std::atof(argv[++i]);
+    const bool value = i + 1 < argc;
+    if (a == "--levels" && value) levels = std::atoi(argv[++i]);
+    else if (a == "--error" && value) error = std::atof(argv[++i]);
+    else if (a == "--faces" && value) faces = std::atoi(argv[++i]);
+    else if (a == "--rdo" && value) rdo = std::atof(argv[++i]);
+    else if (a.empty() || a[0] == '-')
+      return std::fprintf(stderr, "usage: zero_probe [--levels L] [--error E] [--faces F] [--rdo LAMBDA] MESH\n"), 2;
     else path = a;
   }
   auto in = read_mesh(path);
-  if (!in.ok()) return 77;
+  if (!in.ok()) return std::fprintf(stderr, "zero_probe: %s: %s\n", path.c_str(), in.status().to_string().c_str()), 77;
   EncodeOptions o;
   o.levels = levels;
   o.error = error;
