@@ -27,15 +27,20 @@
 // L-1, an upper bound of their error (their split edge's odd vertex sits
 // nearer the input than the flat face).
 //
-// Bits: a face's level-L values are those of its three edges.  A greedy
-// pass refines faces in order of error removed per bit not yet paid (each
-// value costed where the real coder puts it, spec 9b's adaptive model on
-// today's full stream); then, for prefixes of that order, the closure is
-// applied and the needed values are costed again as one stream in the
-// canonical order without the others (as zero_probe does for implied
-// zeros), plus one refine flag per level-(L-1) face at its ideal entropy
-// n H(refined share).  The prefix is the real file's through level L-1
-// plus the level's chunk frame plus these bits.
+// Bits: a face's level-L values are those of its three edges.  Faces are
+// refined in units: the faces of level L-1 under one face of level g
+// (--units; g = L-1 is one face, g = 0 a control face).  A greedy pass
+// orders the units by error removed per bit not yet paid (each value
+// costed where the real coder puts it, spec 9b's adaptive model on today's
+// full stream); then, for prefixes of that order, the closure is applied
+// and the needed values are costed again as one stream in the canonical
+// order without the others (as zero_probe does for implied zeros), plus
+// one refine flag per unit at its ideal entropy n H(refined share).  The
+// prefix is the real file's through level L-1 plus the level's chunk
+// frame plus these bits.  With --draco, the last table gives dbss / Draco
+// bytes at Draco's error: uniform (log-log between the targets' levels,
+// as lod_bench's search lands) and adaptive (per unit level, with flags
+// and with flags free).
 //
 //   adaptive_probe [--levels L] [--errors E1,E2,..] [--faces F] [--per-face 4|16] [--samples N]
 //                  [--draco NAME:BYTES:ERROR,..] [--units G1,G2,..] [--check] MESH
@@ -570,7 +575,7 @@ int main(int argc, char** argv) {
   for (double t : targets) runs.push_back(probe(input, diag, tree, S, levels, t, faces, per_face, units));
 
   if (!refs.empty()) {
-    std::printf("\n| Draco | bytes | error | uniform dbss / Draco (target, level) |");
+    std::printf("\n| Draco | bytes | error | uniform dbss / Draco (best target, level; log-log between targets) |");
     for (uint32_t g : units) std::printf(" adaptive, unit level %u / Draco (target) | flags free |", g);
     std::printf("\n|---|---|---|---|");
     for (size_t i = 0; i < units.size(); ++i) std::printf("---|---|");
@@ -582,8 +587,20 @@ int main(int argc, char** argv) {
         for (int l = 0; l < 2; ++l)
           if (s.uniform_error[l] <= r.error && (uni < 0 || s.uniform_bytes[l] < uni))
             uni = s.uniform_bytes[l], uni_t = s.target, uni_l = l;
-      char u[64] = "not reached";
-      if (uni > 0) std::snprintf(u, sizeof u, "%.2f (%g, L%s)", uni / r.bytes, uni_t, uni_l ? "" : "-1");
+      // The uniform levels of every target as one curve, log-log between
+      // them as lod_bench's search would land (within its 2%).
+      std::vector<Point> uc;
+      for (const Summary& s : runs)
+        for (int l = 0; l < 2; ++l) {
+          Point p;
+          p.bytes = s.uniform_bytes[l], p.error = s.uniform_error[l];
+          uc.push_back(p);
+        }
+      const double between = bytes_at(uc, r.error, false);
+      char u[96] = "not reached";
+      if (uni > 0)
+        std::snprintf(u, sizeof u, "%.2f (%g, L%s); between targets %.2f", uni / r.bytes, uni_t, uni_l ? "" : "-1",
+                      between / r.bytes);
       std::printf("| %s | %.0f | %.2e | %s |", r.name.c_str(), r.bytes, r.error, u);
       for (uint32_t g : units)
         for (bool free_flags : {false, true}) {
