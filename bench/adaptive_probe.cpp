@@ -43,7 +43,7 @@
 // and with flags free).
 //
 //   adaptive_probe [--levels L] [--errors E1,E2,..] [--faces F] [--per-face 4|16] [--samples N]
-//                  [--draco NAME:BYTES:ERROR,..] [--units G1,G2,..] [--check] MESH
+//                  [--draco NAME:BYTES:ERROR,..] [--units G1,G2,..] [--check] [--measure] MESH
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -72,6 +72,10 @@ namespace {
 
 // --check: a figure out of bounds makes the program exit 2 (the ctest).
 bool g_failed = false;
+// --measure: also build each mixed surface (red faces' children, green
+// faces split in two, the rest as they are) and measure it with
+// mesh_distance, to check the per-face approximation.
+bool g_measure = false;
 void expect(bool ok, const char* what) {
   if (!ok) std::fprintf(stderr, "adaptive_probe: check failed: %s\n", what), g_failed = true;
 }
@@ -220,6 +224,7 @@ struct Reference {
 struct Point {
   size_t refined = 0, forced = 0, green = 0, values = 0;
   double value_bits = 0, flag_bits = 0, bytes = 0, error = 0;
+  double measured = 0;  // --measure: the built mixed mesh's error
 };
 
 double entropy_bits(size_t k, size_t n) {
@@ -292,6 +297,10 @@ Summary probe(const TriangleMesh& input, double diag, const TriangleTree& input_
         std::exit(2);
       }
     }
+
+  // Butterfly interpolates: level L keeps level L-1's vertices where they
+  // were (the mixed surface takes its corners from level L's positions).
+  expect(std::equal(P3.begin(), P3.end(), P4.begin()), "level L keeps level L-1's vertices");
 
   // level -> input, per face of level L-1: integral of the distance and
   // area, from one random point in each subtriangle (stratified: a fixed
@@ -487,6 +496,32 @@ Summary probe(const TriangleMesh& input, double diag, const TriangleTree& input_
       p.flag_bits = entropy_bits(k, nu);
       p.bytes = base + frame + (p.value_bits + p.flag_bits) / 8;
       p.error = mixed_error(red);
+      if (g_measure) {
+        TriangleMesh mixed{P4, {}};
+        for (size_t f = 0; f < nf; ++f) {
+          if (red[f]) {
+            mixed.triangles.insert(mixed.triangles.end(), &T4[12 * f], &T4[12 * f + 12]);
+            continue;
+          }
+          int split = -1, n = 0;
+          for (int j = 0; j < 3; ++j)
+            if (other[3 * f + j] != UINT32_MAX && red[other[3 * f + j]]) split = j, ++n;
+          const uint32_t* c = &T3[3 * f];
+          if (n == 0) {
+            mixed.triangles.insert(mixed.triangles.end(), c, c + 3);
+          } else {  // green: (cj, m, cj+2) and (m, cj+1, cj+2)
+            const uint32_t m2 = uint32_t(V3) + edge_of[3 * f + split];
+            const uint32_t a = c[split], b = c[(split + 1) % 3], d = c[(split + 2) % 3];
+            for (uint32_t v : {a, m2, d, m2, b, d}) mixed.triangles.push_back(v);
+          }
+        }
+        MeshDistanceOptions mo;
+        mo.samples = 100000;
+        p.measured = mesh_distance(mixed, input, mo).mean() / diag;
+        // Green faces count at level L-1 in the approximation, so it runs
+        // high; by more than a few percent it would not be worth reading.
+        expect(std::abs(p.measured / p.error - 1) < 0.15, "the per-face sum is within 15% of the built mixed mesh's error");
+      }
       return p;
     };
     std::printf("\nrefine units: the faces under one face of level %u (%zu units of %zu faces)\n", g, nu, size_t{1} << shift);
@@ -499,8 +534,11 @@ Summary probe(const TriangleMesh& input, double diag, const TriangleTree& input_
       const size_t k = size_t(std::llround(fr * order.size()));
       const Point p = point(k);
       curve.push_back(p);
-      std::printf("| %zu (%.0f%%) | %zu | %zu | %zu | %.0f | %.0f | %.0f (%.0f) | %.3e |\n", p.refined, 100.0 * p.refined / nu,
+      std::printf("| %zu (%.0f%%) | %zu | %zu | %zu | %.0f | %.0f | %.0f (%.0f) | %.3e", p.refined, 100.0 * p.refined / nu,
                   p.forced, p.green, p.values, p.value_bits, p.flag_bits, p.bytes, p.bytes - p.flag_bits / 8, p.error);
+      if (g_measure) std::printf(" (built: %.3e)", p.measured);
+      std::printf(" |\n");
+      if (g_measure) curve.back().error = p.measured;  // the summary from the built meshes
     }
     std::printf("| uniform level %u | | | %zu | %.0f | 0 | %.0f | %.3e |\n", L, q.size(), full_bits, out.uniform_bytes[1],
                 out.uniform_error[1]);
@@ -526,7 +564,7 @@ int main(int argc, char** argv) {
   std::string path;
   auto usage = [] {
     std::fprintf(stderr, "usage: adaptive_probe [--levels L] [--errors E1,E2,..] [--faces F] [--per-face 4|16] "
-                         "[--samples N] [--draco NAME:BYTES:ERROR,..] [--units G1,G2,..] [--check] MESH\n");
+                         "[--samples N] [--draco NAME:BYTES:ERROR,..] [--units G1,G2,..] [--check] [--measure] MESH\n");
     return 2;
   };
   for (int i = 1; i < argc; ++i) {
@@ -536,6 +574,7 @@ int main(int argc, char** argv) {
     else if (a == "--faces" && value) faces = std::atoi(argv[++i]);
     else if (a == "--per-face" && value) per_face = std::atoi(argv[++i]);
     else if (a == "--check") check = true;
+    else if (a == "--measure") g_measure = true;
     else if (a == "--units" && value) {
       std::stringstream s(argv[++i]);
       for (std::string t; std::getline(s, t, ',');) units.push_back(std::atoi(t.c_str()));
