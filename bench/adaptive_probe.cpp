@@ -24,8 +24,9 @@
 // included) at level L-1: the level -> input mean is the sum of the chosen
 // integrals over the sum of the chosen areas, the input -> level mean the
 // chosen distances over the sample count.  Green faces are costed at level
-// L-1, an upper bound of their error (their split edge's odd vertex sits
-// nearer the input than the flat face).
+// L-1, which should overstate their error (their split edge's odd vertex
+// sits nearer the input than the flat face); --measure checks the sum
+// against the built mixed mesh (-2.7%..+1.5% on armadillo and camel).
 //
 // Bits: a face's level-L values are those of its three edges.  Faces are
 // refined in units: the faces of level L-1 under one face of level g
