@@ -18,7 +18,7 @@ constexpr size_t kMaxReportTriangles = 6'000'000;
 }  // namespace
 
 int run_encode_mesh(const std::string& input, const std::string& output, const TriangleMesh& mesh, EncodeOptions options,
-                    double read_s) {
+                    double read_s, bool report) {
   Progress progress("dbss encode");
   options.source_name = std::filesystem::path(input).filename().string();
   options.encoder_version = DBSS_VERSION;
@@ -78,7 +78,7 @@ int run_encode_mesh(const std::string& input, const std::string& output, const T
     // The distance builds a tree of both meshes (about 100 bytes a
     // triangle): past a few million triangles the report would need more
     // memory than the encoding did, so it is left out there.
-    const bool measured = m.triangle_count() + me.input.triangle_count() <= kMaxReportTriangles;
+    const bool measured = report && m.triangle_count() + me.input.triangle_count() <= kMaxReportTriangles;
     if (measured && !to_input) to_input.emplace(me.input, mo);
     const double d = measured ? to_input->from(m).mean() / e.diagonal : 0.0;
     std::printf("%-5u %9zu %10zu %10llu %10u %8lld %11u ", l, m.vertex_count(), m.triangle_count(),
@@ -87,6 +87,7 @@ int run_encode_mesh(const std::string& input, const std::string& output, const T
     if (measured) std::printf("%11.3e\n", d);
     else std::printf("%11s\n", "-");
   }
+  if (!report) std::printf("(distances to the input not measured: --no-report)\n");
   if (!kept) {
     std::fprintf(stderr, "dbss encode: %s: warning (topology): a level's topology differs from the input's\n", input.c_str());
   }
