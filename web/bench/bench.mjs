@@ -13,6 +13,8 @@
 //  &wasm=URL of the dbss module (default build-web/dist/dbss_wasm.mjs)
 //  &other=URL of another build of it, timed the same way (optional)
 //  &samples=N (default 21)
+//  &streaming=1: also time level L decoded by a decoder that holds L - 1
+//  (dbssIncrement), as its own side
 import { loadModule, StreamingDecoder } from '../dbss.mjs';
 import { levelEnd } from '../loader.mjs';
 import { fnv1a64 } from '../hash.mjs';
@@ -38,22 +40,31 @@ const out = document.getElementById('out');
 // spread is a few percent of a sample, on both sides alike.
 let overheadMs = 0;
 async function calibrate(fn) {
-  for (let i = 0; i < 3; ++i) fn();  // warm up: compile tiers, grow memory
+  for (let i = 0; i < 3; ++i) await sample(fn, 1);  // warm up: compile tiers, grow memory
   let reps = 1;
   while ((await sample(fn, reps)) * reps < (window.dbssCpuNs ? 150 : 20) && reps < 65536) reps *= 2;
   return reps;
 }
 // With window.dbssCpuNs (run.mjs provides it), a sample is CPU time of the
 // page's thread; else wall time.
+// fn.prepare(reps), when fn has it, runs before the clock starts and its
+// result is passed to every call as fn(i, prepared); fn.done(prepared)
+// after the clock stops (the streaming side's decoders already at level
+// L - 1).
 async function sample(fn, reps) {
+  const state = fn.prepare ? fn.prepare(reps) : undefined;
+  let ms;
   if (window.dbssCpuNs) {
     const c = await window.dbssCpuNs();
-    for (let i = 0; i < reps; ++i) fn();
-    return ((await window.dbssCpuNs() - c) / 1e6 - overheadMs) / reps;
+    for (let i = 0; i < reps; ++i) fn(i, state);
+    ms = ((await window.dbssCpuNs() - c) / 1e6 - overheadMs) / reps;
+  } else {
+    const t = performance.now();
+    for (let i = 0; i < reps; ++i) fn(i, state);
+    ms = (performance.now() - t) / reps;
   }
-  const t = performance.now();
-  for (let i = 0; i < reps; ++i) fn();
-  return (performance.now() - t) / reps;
+  if (fn.done) fn.done(state);
+  return ms;
 }
 function quantile(xs, q) {
   const s = [...xs].sort((a, b) => a - b), i = q * (s.length - 1), lo = Math.floor(i);
@@ -78,10 +89,34 @@ function dbssCall(module, prefix, L, info) {
   };
 }
 
+// The streaming case: a viewer that holds level L - 1 (a decoder that has
+// decoded it from the bytes up to it) receives level L's bytes and decodes
+// level L: the bytes of LEVL L pushed (copy, CRC, range decoding) and one
+// refinement step.  The decoders at level L - 1 are made before the clock
+// starts.
+function dbssIncrement(module, before, prefix, L, info) {
+  const head = prefix.subarray(0, before), tail = prefix.subarray(before);
+  const fn = (i, ds) => {
+    const d = ds[i];
+    d.push(tail);
+    const v = d.level(L);
+    if (!info.hash) info.hash = fnv1a64(v.positions);
+  };
+  fn.prepare = (reps) => Array.from({ length: reps }, () => {
+    const d = new StreamingDecoder(module, { keepLevels: false });
+    d.push(head);
+    d.level(L - 1);
+    return d;
+  });
+  fn.done = (ds) => ds.forEach((d) => d.dispose());
+  return fn;
+}
+
 async function run() {
   const module = await loadModule(params.get('wasm') ?? undefined);
   const otherModule = params.get('other') ? await loadModule(params.get('other')) : null;
   const samples = Number(params.get('samples') ?? 21);
+  const streaming = params.get('streaming') === '1';
   const file = new Uint8Array(await (await fetch(params.get('dbss'))).arrayBuffer());
   const probe = new StreamingDecoder(module);
   probe.push(file);
@@ -114,6 +149,9 @@ async function run() {
     const mineInfo = {}, otherInfo = {};
     const sides = [{ fn: dbssCall(module, prefix, L, mineInfo), ms: [] }, { fn: dracoCall, ms: [] }];
     if (otherModule) sides.push({ fn: dbssCall(otherModule, prefix, L, otherInfo), ms: [] });
+    const incInfo = {};
+    const inc = streaming ? { fn: dbssIncrement(module, levelEnd(probe, L - 1), prefix, L, incInfo), ms: [] } : null;
+    if (inc) sides.push(inc);
     for (const s of sides) s.reps = await calibrate(s.fn);
     const ratios = [];
     for (let r = 0; r < samples; ++r) {
@@ -124,7 +162,9 @@ async function run() {
     const { vertices, triangles, hash } = mineInfo;
     rows.push({ level: L, vertices, triangles, dbssBytes: prefix.length, dbss: stats(sides[0].ms), dbssReps: sides[0].reps,
       dracoBytes: drc.length, draco: stats(sides[1].ms), dracoReps: sides[1].reps, ratio: stats(ratios),
-      dracoVertices, dracoTriangles, hash, other: otherModule ? stats(sides[2].ms) : undefined, otherHash: otherInfo.hash });
+      dracoVertices, dracoTriangles, hash, other: otherModule ? stats(sides[2].ms) : undefined, otherHash: otherInfo.hash,
+      increment: inc ? stats(inc.ms) : undefined, incrementHash: incInfo.hash,
+      incrementRatio: inc ? stats(inc.ms.map((ms, r) => sides[1].ms[r] / ms)) : undefined });
   }
   probe.dispose();
   window.benchResult = { rows, userAgent: navigator.userAgent, emptySampleMs: quantile(empty, 0.5),

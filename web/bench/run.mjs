@@ -2,7 +2,7 @@
 // Browser decoding benchmark: dbss WASM vs draco3d WASM in headless
 // Chromium, levels 3-5 of the shipped example encoded with 5 levels.
 //
-//   node web/bench/run.mjs [--scalar | --compare DIR] [--file FILE.dbss] [--samples N] [--wall] [--json]
+//   node web/bench/run.mjs [--scalar | --compare DIR] [--file FILE.dbss] [--samples N] [--wall] [--streaming] [--json]
 //
 // FILE (default: the shipped example encoded with 5 levels) needs levels
 // 3-5.  Makes its files in build-web/bench/ with build/bin/dbss (encode, decode
@@ -13,6 +13,9 @@
 // it gives the same hashes;
 // --compare DIR times another web build of the module (DIR holds its
 // dbss_wasm.mjs and .wasm, e.g. one built from an older commit) the same way.
+// --streaming also times the streaming case as its own side: a decoder that
+// already holds level L - 1 gets LEVL L's bytes and decodes level L
+// (columns "L-1 -> L"; draco3d still decodes all of level L).
 import { spawnSync } from 'node:child_process';
 import { existsSync, mkdirSync, readFileSync, readdirSync, statSync } from 'node:fs';
 import { basename, dirname, join, resolve } from 'node:path';
@@ -51,6 +54,7 @@ const scalar = process.argv.includes('--scalar');
 const samplesArg = process.argv.indexOf('--samples');
 const samples = samplesArg > 0 ? Number(process.argv[samplesArg + 1]) : 21;
 const wall = process.argv.includes('--wall');
+const streaming = process.argv.includes('--streaming');
 const compareArg = process.argv.indexOf('--compare');
 const compareDir = compareArg > 0 ? resolve(process.argv[compareArg + 1]) : null;
 const other = scalar ? 'scalar' : compareDir ? 'other' : null;
@@ -99,6 +103,7 @@ async function measure(otherWasm) {
   const q = new URLSearchParams({ dbss: `/bench-input/${basename(file)}`, drc: `/bench-files/${stem}-level{L}.drc`, levels: levels.join(','),
     samples: String(samples) });
   if (otherWasm) q.set('other', otherWasm);
+  if (streaming) q.set('streaming', '1');
   await page.goto(`${url}/web/bench/?${q}`);
   await page.waitForFunction(() => window.benchResult, null, { timeout: 300000 });
   const res = await page.evaluate(() => window.benchResult);
@@ -107,6 +112,7 @@ async function measure(otherWasm) {
   for (const r of res.rows) {
     if (r.hash !== native[r.level]) throw new Error(`level ${r.level}: browser hash ${r.hash}, native ${native[r.level]}`);
     if (otherWasm && r.otherHash !== native[r.level]) throw new Error(`level ${r.level}: the other build's hash ${r.otherHash}, native ${native[r.level]}`);
+    if (streaming && r.incrementHash !== native[r.level]) throw new Error(`level ${r.level}: the streaming decoder's hash ${r.incrementHash}, native ${native[r.level]}`);
     if (r.dracoVertices !== r.vertices || r.dracoTriangles !== r.triangles) throw new Error(`level ${r.level}: Draco's mesh has other counts`);
   }
   return res;
@@ -126,10 +132,11 @@ console.log(`${res.userAgent.match(/Chrome\/[\d.]+/)?.[0] ?? 'Chromium'}, headle
   `median (quartiles) of ${r0.dbss.n} samples per side taken in turns, each sample the mean of enough calls to take >= 150 ms; ` +
   `${res.clock}; the ${(res.emptySampleMs).toFixed(1)} ms an empty sample costs taken off each sample`);
 if (compareDir) console.log(`other: the module in ${compareDir}`);
-console.log(`level  triangles | dbss bytes        dbss ms        | draco bytes     draco3d ms       | draco3d / dbss per round${other ? ` | dbss ${other} ms` : ''}`);
+console.log(`level  triangles | dbss bytes        dbss ms        | draco bytes     draco3d ms       | draco3d / dbss per round${other ? ` | dbss ${other} ms` : ''}${streaming ? ` | dbss L-1 -> L ms      | draco3d / (L-1 -> L)` : ''}`);
 res.rows.forEach((r) => {
   let line = `${pad(r.level, 5)} ${pad(r.triangles, 10)} | ${pad(r.dbssBytes, 10)} ${mq(r.dbss, 21)} | ${pad(r.dracoBytes, 11)} ${mq(r.draco, 22)} | ${mq(r.ratio, 24)}`;
   if (other) line += ` | ${mq(r.other, 21)}`;
+  if (streaming) line += ` | ${mq(r.increment, 21)} | ${mq(r.incrementRatio, 22)}`;
   console.log(line);
 });
 console.log('every level hashes as build/bin/dbss decodes it' + (other ? ` (the ${other} build too)` : ''));
