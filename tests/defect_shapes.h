@@ -253,6 +253,39 @@ inline PointCloud with_noise(const PointCloud& cloud, double sigma_rel_to_diag, 
   return out;
 }
 
+// A plate with round holes through it (issue 13: several handles that open
+// at one grid of the carving's search): a box of half sides 1 x 0.7 x
+// `half_thickness` with `holes` (1..5) holes of radius `radius` through it
+// along z, in a row along x, zig-zagging in y.  Genus `holes`.
+inline std::vector<std::array<double, 2>> plate_hole_centres(int holes) {
+  std::vector<std::array<double, 2>> c;
+  holes = std::clamp(holes, 1, 5);
+  for (int h = 0; h < holes; ++h)
+    c.push_back({holes == 1 ? 0.0 : -0.7 + 1.4 * h / (holes - 1), (h % 2 ? 0.15 : -0.15)});
+  return c;
+}
+inline Shape holed_plate(double half_thickness, int holes, double radius) {
+  const auto centres = plate_hole_centres(holes);
+  Sdf sdf = [=](double x, double y, double z) {
+    double d = box_sdf(x, y, z, 0, 0, 0, 1, 0.7, half_thickness);
+    for (const auto& c : centres) d = std::max(d, radius - std::hypot(x - c[0], y - c[1]));
+    return d;
+  };
+  return {"holed plate", sdf, -1.1, 1.1, 1, static_cast<int64_t>(centres.size())};
+}
+// The plate without its holes, scanned with gaps where they would be: the
+// points within `radius` of a hole's axis removed on both faces (what a
+// scan of a solid plate missing those discs on both sides gives; genus 0,
+// and no wall inside the gap, where the real holes have one).
+inline PointCloud with_plate_gaps(const PointCloud& solid_plate, int holes, double radius) {
+  const auto centres = plate_hole_centres(holes);
+  return keep_points(solid_plate, [&](size_t i) {
+    for (const auto& c : centres)
+      if (std::hypot(solid_plate.xyz[3 * i] - c[0], solid_plate.xyz[3 * i + 1] - c[1]) < radius) return false;
+    return true;
+  });
+}
+
 // The sampled_shapes.h shape by name ("sphere", "torus", "double torus"...).
 inline const Shape* find_shape(const std::vector<Shape>& shapes, const char* name) {
   for (const Shape& s : shapes)
