@@ -21,8 +21,9 @@
 //   --against-no-flat-corners: likewise without the corner tags on flat, irregular fans
 //     (CreaseOptions::flat_corners): the tenth session's before/after
 //   --flat-fan DEG: CreaseOptions::flat_fan_degrees (how flat a fan must be for that tag)
-//   CREASE_BENCH_AFTER="vflips=0 beside=1 relax_after=0 untag_flat=1" (environment): the 'on' run's
-//     valence_flips, relax_beside_lines and relax_after_flips set so, for trying combinations
+//   CREASE_BENCH_AFTER="vflips=0 beside=1 relax_after=0 untag_flat=1 gap=0 fanfit=0 fancheck=0" (environment):
+//     the 'on' run's valence_flips, relax_beside_lines, relax_after_flips, untag_flat, gap_snaps,
+//     flat_fan_fit and flat_fan_check set so, for trying combinations
 //   --on-only: skip the creases-off encode (its columns print zero): for comparing CREASE_BENCH_AFTER
 //     settings run by run at half the cost
 //   --against-no-wedge: likewise without the wedge sampling next to creases (CreaseOptions::wedge)
@@ -34,6 +35,7 @@
 //   CREASE_BENCH_DUMP=DIR (environment): each level written to DIR/SHAPE-{on,off}-L.off and
 //   the level-0 tags (edge ends, "c" corners) to DIR/SHAPE-creases.txt, each vertex's offset to the
 //   true mesh (x y z per line) to DIR/SHAPE-{on,off}-L.dist, for a closer look
+//   CREASE_BENCH_WORST=1 (environment): print each level's farthest sample (where its Hausdorff figure is)
 //   SHAPE: cube, cylinder, roof, sphere, torus (smooth: no crease should be found), or a mesh file (absent with --skip-absent: exit 77 unless CI=true)
 #include <algorithm>
 #include <array>
@@ -80,12 +82,17 @@ double crease_length(const dbss::TriangleMesh& m, const dbss::format::Creases& c
 // The 99th and 99.9th percentiles of both directions' sampled distances
 // pooled (same samples and seeds as mesh_distance): the Hausdorff figure is
 // one worst sample and swings with the sampling seed; these do not.
-std::array<double, 2> percentiles(const dbss::TriangleMesh& a, const dbss::TriangleMesh& b, size_t samples) {
+// `worst` gets the farthest sample: x y z, 0 when it lies on a (1 on b), its distance.
+std::array<double, 2> percentiles(const dbss::TriangleMesh& a, const dbss::TriangleMesh& b, size_t samples, std::array<double, 5>* worst = nullptr) {
   std::vector<double> d;
+  double far = -1;
   const auto one_way = [&](const dbss::TriangleMesh& from, const dbss::TriangleMesh& to, uint32_t seed) {
     const std::vector<double> p = dbss::sample_surface(from, samples / 2, seed);
     const dbss::TriangleTree tree(to);
-    for (size_t i = 0; i + 2 < p.size(); i += 3) d.push_back(tree.distance(&p[i]));
+    for (size_t i = 0; i + 2 < p.size(); i += 3) {
+      d.push_back(tree.distance(&p[i]));
+      if (worst && d.back() > far) far = d.back(), *worst = {p[i], p[i + 1], p[i + 2], seed == 1 ? 0.0 : 1.0, far};
+    }
   };
   one_way(a, b, 1);
   one_way(b, a, 2);
@@ -192,6 +199,7 @@ int main(int argc, char** argv) {
         };
         flag("vflips", eo.creases.valence_flips), flag("beside", eo.creases.relax_beside_lines);
         flag("relax_after", eo.creases.relax_after_flips), flag("untag_flat", eo.creases.untag_flat);
+        flag("gap", eo.creases.gap_snaps), flag("fanfit", eo.creases.flat_fan_fit), flag("fancheck", eo.creases.flat_fan_check);
       }
       eo.control.shape.enabled = shaping;
       eo.creases.split = split;
@@ -242,7 +250,12 @@ int main(int argc, char** argv) {
         runs[on].bytes.push_back(dbss::prefix_bytes(enc, l));
         runs[on].mean.push_back(d.mean() / diag);
         runs[on].hausdorff.push_back(d.max() / diag);
-        const std::array<double, 2> pct = percentiles(m, truth, samples);
+        std::array<double, 5> worst{};
+        const std::array<double, 2> pct = percentiles(m, truth, samples, &worst);
+        if (std::getenv("CREASE_BENCH_WORST"))
+          std::printf("worst %s %s level %u: %.4f%% at %.5f %.5f %.5f (%s)\n", shape.c_str(), on ? "on" : "off", l,
+                      100 * worst[4] / diag, worst[0], worst[1], worst[2],
+                      worst[3] == 0 ? "on the level" : "on the truth");
         runs[on].p99.push_back(pct[0] / diag), runs[on].p999.push_back(pct[1] / diag);
       }
     }
@@ -252,8 +265,8 @@ int main(int argc, char** argv) {
       const dbss::CreaseStats& s = runs[on].stats;
       if (against_no_collapse || against_no_wedge || against_no_relax || against_beside || against_no_gate || against_no_vflips || against_no_flat_corners) std::printf("%s: ", on ? "after" : "before");
       std::printf("aligned: %zu vertices moved onto feature lines, %zu merged into a neighbour on one, %zu flat-face moves, %zu flat edges flipped toward valence 6, %zu edges flipped and %zu split along "
-                  "them, %zu chain edges; creases: %zu edges, %zu corners (%zu on flat fans), %zu darts, feature length %.3f; tags %zu bytes\n",
-                  s.aligned, s.align_collapses, s.align_relaxed, s.align_valence_flips, s.align_flips, s.align_splits, s.chain_edges, s.creases, s.corners + s.flat_corners, s.flat_corners, s.darts,
+                  "them, %zu chain edges; creases: %zu edges, %zu corners (%zu on flat fans, %zu dropped by the check), %zu darts, feature length %.3f; tags %zu bytes\n",
+                  s.aligned, s.align_collapses, s.align_relaxed, s.align_valence_flips, s.align_flips, s.align_splits, s.chain_edges, s.creases, s.corners + s.flat_corners, s.flat_corners, s.flat_corners_dropped, s.darts,
                   runs[on].length / diag, runs[on].tag_bytes);
     }
     std::printf("control mesh: off: %s; on: %s\n", runs[0].choice.c_str(), runs[1].choice.c_str());

@@ -86,7 +86,7 @@ std::vector<double> stencil_offsets(const TriangleMesh& mesh, const format::Crea
 constexpr double kOvershoot = 0.25;
 
 void tag_flat_fans(const TriangleMesh& mesh, const LevelTopology& t, const std::vector<uint32_t>& count, double degrees,
-                   format::Creases& out, CreaseStats& st) {
+                   bool fit_plane, bool check, format::Creases& out, CreaseStats& st) {
   const double flat = std::cos(degrees * 3.14159265358979323846 / 180);
   const uint32_t n = t.vertex_count;
   std::vector<uint32_t> valence(n, 0);
@@ -111,6 +111,40 @@ void tag_flat_fans(const TriangleMesh& mesh, const LevelTopology& t, const std::
       else if (dot(u, first[v]) <= flat) bent[v] = 1;
     }
   }
+  if (fit_plane) {
+    // Flat against the fan's area-weighted plane: each ring vertex within
+    // sin(degrees) of the fan's mean edge length from it (CreaseOptions::
+    // flat_fan_fit).  A zero or turned triangle still bends the fan.
+    std::vector<V3> sum(n, V3{0, 0, 0});
+    std::vector<double> edge_sum(n, 0);
+    for (size_t f = 0; f < mesh.triangle_count(); ++f) {
+      const uint32_t* c = &mesh.triangles[3 * f];
+      const V3 a = at(mesh.positions, c[0]);
+      const V3 nf = cross(sub(at(mesh.positions, c[1]), a), sub(at(mesh.positions, c[2]), a));
+      for (int k = 0; k < 3; ++k) {
+        for (int i = 0; i < 3; ++i) sum[c[k]][i] += nf[i];
+        edge_sum[c[k]] += norm(sub(at(mesh.positions, c[(k + 1) % 3]), at(mesh.positions, c[k])));
+      }
+    }
+    const double tol = std::sin(degrees * 3.14159265358979323846 / 180);
+    std::fill(bent.begin(), bent.end(), 0);
+    for (size_t f = 0; f < mesh.triangle_count(); ++f) {
+      const uint32_t* c = &mesh.triangles[3 * f];
+      const V3 a = at(mesh.positions, c[0]);
+      const V3 nf = cross(sub(at(mesh.positions, c[1]), a), sub(at(mesh.positions, c[2]), a));
+      for (int k = 0; k < 3; ++k) {
+        const uint32_t v = c[k];
+        const double l = norm(sum[v]);
+        if (!(l > 0) || !(norm(nf) > 0) || dot(nf, sum[v]) <= 0) {
+          bent[v] = 1;
+          continue;
+        }
+        const double reach = tol * edge_sum[v] / valence[v];
+        for (int j = 1; j < 3; ++j)
+          if (std::abs(dot(sub(at(mesh.positions, c[(k + j) % 3]), at(mesh.positions, v)), sum[v])) > reach * l) bent[v] = 1;
+      }
+    }
+  }
   std::vector<uint32_t> candidates;
   for (uint32_t v = 0; v < n; ++v)
     if (count[v] == 0 && !out.corner[v] && !boundary[v] && !bent[v] && valence[v] != 6 && valence[v] >= 3) candidates.push_back(v);
@@ -120,11 +154,28 @@ void tag_flat_fans(const TriangleMesh& mesh, const LevelTopology& t, const std::
   const std::vector<double> before = stencil_offsets(mesh, out), after = stencil_offsets(mesh, all);
   if (before.size() != t.edge_count() || after.size() != t.edge_count()) return;
   std::vector<double> worst_before(n, 0), worst_after(n, 0);
-  for (uint32_t e = 0; e < t.edge_count(); ++e)
-    for (uint32_t v : {t.triangles[t.edge_half[e]], t.triangles[next_half(t.edge_half[e])]})
-      worst_before[v] = std::max(worst_before[v], before[e]), worst_after[v] = std::max(worst_after[v], after[e]);
+  const auto worst_at = [&](const std::vector<double>& off, std::vector<double>& worst) {
+    std::fill(worst.begin(), worst.end(), 0);
+    for (uint32_t e = 0; e < t.edge_count(); ++e)
+      for (uint32_t v : {t.triangles[t.edge_half[e]], t.triangles[next_half(t.edge_half[e])]}) worst[v] = std::max(worst[v], off[e]);
+  };
+  worst_at(before, worst_before), worst_at(after, worst_after);
+  format::Creases chosen = out;
   for (uint32_t v : candidates)
-    if (worst_before[v] > kOvershoot && worst_after[v] < 0.5 * worst_before[v]) out.corner[v] = 1, ++st.flat_corners;
+    if (worst_before[v] > kOvershoot && worst_after[v] < 0.5 * worst_before[v]) chosen.corner[v] = 1;
+  // The check (CreaseOptions::flat_fan_check): the chosen tags judged as
+  // they end up, with the rejected candidates untagged.
+  for (int round = 0; round < (check ? 3 : 0); ++round) {
+    const std::vector<double> final_off = stencil_offsets(mesh, chosen);
+    if (final_off.size() != t.edge_count()) break;
+    worst_at(final_off, worst_after);
+    bool changed = false;
+    for (uint32_t v : candidates)
+      if (chosen.corner[v] && !(worst_after[v] < 0.5 * worst_before[v])) chosen.corner[v] = 0, changed = true, ++st.flat_corners_dropped;
+    if (!changed) break;
+  }
+  for (uint32_t v : candidates)
+    if (chosen.corner[v]) out.corner[v] = 1, ++st.flat_corners;
 }
 
 }  // namespace
@@ -404,7 +455,7 @@ format::Creases find_creases(TriangleMesh& mesh, const PointIndex& points, const
     st.max_snap = std::max(st.max_snap, move);
   }
   mesh.positions = std::move(moved);
-  if (o.flat_corners) tag_flat_fans(mesh, t, count, o.flat_fan_degrees, out, st);
+  if (o.flat_corners) tag_flat_fans(mesh, t, count, o.flat_fan_degrees, o.flat_fan_fit, o.flat_fan_check, out, st);
   if (stats) *stats = st;
   return out;
 }

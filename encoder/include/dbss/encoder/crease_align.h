@@ -34,7 +34,9 @@ struct AlignStats {
 // options.angle_degrees and each group is flat (options.flatness), the
 // vertex moves onto the planes' line (or their common point) if that is
 // within a third of its shortest edge and no triangle turns over or
-// becomes a sliver.  With options.collapse, a vertex whose move was refused
+// becomes a sliver; with options.gap_snaps, a line vertex refused so where
+// its line's chain stops at it, and goes on within three of its edges, is
+// tried again with a lower sliver floor.  With options.collapse, a vertex whose move was refused
 // is merged into its neighbour on the same line when the collapse keeps the
 // mesh a manifold (link condition) and its triangles unturned.  With
 // options.relax (and a vertex moved), the vertices of flat faces move in

@@ -102,6 +102,23 @@ struct CreaseOptions {
   // Only when some edge is a crease.
   bool flat_corners = true;
   double flat_fan_degrees = 1;
+  // How a fan is judged flat for flat_corners: every vertex of its ring
+  // within sin(flat_fan_degrees) of the fan's mean edge length from the
+  // plane of its area-weighted normal (on), not every triangle within
+  // flat_fan_degrees of the first one's plane (off).  A neighbour on a line
+  // snapped 0.0005 off the face's plane tilts a short triangle by degrees
+  // while the fan stays flat where its stencils reach (the fandisk at seed
+  // 1: two triangles at 2 and 5 degrees, the level-3 Hausdorff vertex).
+  bool flat_fan_fit = true;
+  // After choosing the flat_corners tags (each candidate judged with every
+  // candidate tagged), judge the chosen ones again with the tags as they
+  // end up, untagging any whose worst stencil offset is no longer halved
+  // (an edge between a tagged and an untagged candidate is otherwise never
+  // measured in its final configuration); up to three rounds.
+  bool flat_fan_check = true;
+  // Retry, with a lower quality floor, the move onto its line of a vertex
+  // in a gap of the line's chain (crease_align.cpp 2a).
+  bool gap_snaps = true;
 };
 
 struct CreaseStats {
@@ -117,6 +134,7 @@ struct CreaseStats {
   size_t aligned = 0, align_flips = 0, align_valence_flips = 0, align_splits = 0, align_collapses = 0, align_relaxed = 0;
   size_t chain_edges = 0;  // tagged as joining two aligned vertices along their line
   size_t flat_corners = 0;  // smooth vertices of flat, irregular fans tagged corner (CreaseOptions::flat_corners)
+  size_t flat_corners_dropped = 0;  // of those chosen, untagged by the check (CreaseOptions::flat_fan_check)
 };
 
 // First aligns `mesh` to the feature lines (align_to_features: vertices
