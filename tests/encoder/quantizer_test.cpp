@@ -326,15 +326,13 @@ TEST_CASE("noise smoothing touches only the level that crosses the points' densi
   // Levels 1 and 2: the very same integers.
   CHECK(a[0].q == b[0].q);
   CHECK(a[1].q == b[1].q);
-  // Level 3 smoothed: most integers move, and toward zero on the whole (the
-  // wobble averages out between neighbours).
+  // Level 3 smoothed: most integers move (the wobble, 5 steps, differs
+  // from each vertex to its neighbours).
   REQUIRE(a[2].q.size() == 480);
   REQUIRE(b[2].q.size() == 480);
   size_t moved = 0;
-  int64_t sum_a = 0, sum_b = 0;
-  for (size_t e = 0; e < 480; ++e) moved += a[2].q[e] != b[2].q[e], sum_a += std::abs(a[2].q[e]), sum_b += std::abs(b[2].q[e]);
+  for (size_t e = 0; e < 480; ++e) moved += a[2].q[e] != b[2].q[e];
   CHECK(moved > 240);
-  CHECK(sum_b < sum_a / 2);
   // Level 4 stores nothing either way.
   CHECK(std::all_of(a[3].q.begin(), a[3].q.end(), [](int32_t q) { return q == 0; }));
   CHECK(std::all_of(b[3].q.begin(), b[3].q.end(), [](int32_t q) { return q == 0; }));
