@@ -6,7 +6,7 @@
 // little: this prints every seed and the worst ratio per level.
 //
 //   level_rise_probe [--seeds 1-7] [--levels 5] [--points 3000] [--noise 0]
-//                    [--shapes torus,double torus] [--truth 20000] [--smoothing 1]
+//                    [--shapes torus,double torus] [--truth 20000] [--smoothing 0]
 // With PROBE_VERTICES set, also the mean distance to the truth of the
 // vertices each level added (level 0: the control vertices).
 #include <algorithm>
@@ -42,7 +42,7 @@ int main(int argc, char** argv) {
   uint32_t first = 1, last = 7, levels = 5;
   size_t points = 3000, truth_count = 20000;
   double noise = 0;
-  bool smoothing = false;
+  bool smoothing = true;  // EncodeOptions::smooth_noise (0: off)
   std::vector<std::string> names = {"torus", "double torus"};
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string a = argv[i], v = argv[i + 1];

@@ -11,13 +11,13 @@
 // usage: rd_bench [--points N] [--noise F] [--levels L] [--qp 8,10,11,12]
 //                 [--samples S] [--seed S] [--methods dbss,afront,poisson]
 //                 [--csv OUT.csv] [--peers IN.csv] [--control-bits B] [--skip-absent]
-//                 [--fixed-control] [--plain-rounding] [--step-bits] [MESH_FILE...]
+//                 [--fixed-control] [--plain-rounding] [--step-bits] [--no-smoothing] [MESH_FILE...]
 //   --plain-rounding: the control vertices rounded to Draco's nearest grid
 //   point (EncodeOptions::round_along_surface off); --step-bits: Draco's
 //   bits from the step (EncodeOptions::control_bits_from_level0 off); both:
-//   the control mesh as before issue 15's ninth session.  --smoothing:
-//   noisy clouds' displacements averaged with their neighbours'
-//   (EncodeOptions::smooth_noise).
+//   the control mesh as before issue 15's ninth session.  --no-smoothing:
+//   noisy clouds' crossing level as sampled (EncodeOptions::smooth_noise
+//   off, as before issue 15's eleventh session).
 //   --peers: the peers' rows for each shape are read from the CSV of an
 //   earlier run (same --points, --noise, --seed and --samples) instead of
 //   reconstructing again (Poisson takes minutes on the armadillo under
@@ -62,7 +62,7 @@ struct Options {
   int control_bits = 0;      // EncodeOptions::control_bits (0: the encoder's own choice)
   bool plain_rounding = false;  // EncodeOptions::round_along_surface off
   bool step_bits = false;       // EncodeOptions::control_bits_from_level0 off
-  bool smoothing = false;       // EncodeOptions::smooth_noise on
+  bool smoothing = true;        // EncodeOptions::smooth_noise
   std::string csv;
   std::string peers_csv;     // peer rows from an earlier run's CSV
   std::vector<std::string> meshes;
@@ -71,7 +71,7 @@ struct Options {
 constexpr const char* kUsage =
     "usage: rd_bench [--points N] [--noise F] [--levels L] [--qp 8,10,11,12] [--samples S] [--seed S]\n"
     "                [--methods dbss,afront,poisson] [--csv OUT.csv] [--peers IN.csv] [--control-bits B]\n"
-    "                [--skip-absent] [--fixed-control] [--plain-rounding] [--step-bits] [--smoothing]\n"
+    "                [--skip-absent] [--fixed-control] [--plain-rounding] [--step-bits] [--no-smoothing]\n"
     "                [MESH_FILE...]\n";
 
 // "L3", "qp 11".  (Appending, not `"L" + std::to_string(l)`, which GCC 12
@@ -106,7 +106,7 @@ bool parse(int argc, char** argv, Options& o) {
     else if (a == "--control-bits" && has_value) o.control_bits = std::atoi(argv[++i]);
     else if (a == "--plain-rounding") o.plain_rounding = true;
     else if (a == "--step-bits") o.step_bits = true;
-    else if (a == "--smoothing") o.smoothing = true;
+    else if (a == "--no-smoothing") o.smoothing = false;
     else if (a == "--skip-absent") o.skip_absent = true;
     else if (a == "--fixed-control") o.fixed_control = true;
     else if (a == "--qp" && has_value) {

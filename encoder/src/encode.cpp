@@ -18,6 +18,7 @@
 #include "dbss/encoder/point_index.h"
 #include "dbss/encoder/point_rims.h"
 #include "dbss/encoder/quantize.h"
+#include "dbss/encoder/surface_fit.h"
 #include "dbss/encoder/tube_points.h"
 #include "dbss/format/writer.h"
 
@@ -392,20 +393,31 @@ Result<Encoding> encode_points(const PointIndex& input_index, const EncodeOption
   // floor is 2.1x the default's against the true surface (1.85e-4 against
   // 8.7e-5): the two floors are a tie against the points (0.000309 and
   // 0.000310 model units), which the rounding tipped the other way.
-  if (Status st = encode_over_control(e, index, o, choose ? BitsRule::from_step : BitsRule::from_level0); !st.ok()) return st;
+  // The candidates are also compared without smoothing (smooth_noise):
+  // against the points, smoothed levels are farther from the points by
+  // design, and with smoothing in the comparison the noisy eight kept the
+  // default mesh for 30% more bytes (bench/rd_bench.md, tenth session).
+  // The mesh kept is then encoded again with it.
+  EncodeOptions compared = o;
+  compared.smooth_noise = false;
+  if (Status st = encode_over_control(e, index, choose ? compared : o, choose ? BitsRule::from_step : BitsRule::from_level0); !st.ok())
+    return st;
   if (choose) {
-    if (Status st = choose_control(e, std::move(*coarse), index, o); !st.ok()) return st;
+    if (Status st = choose_control(e, std::move(*coarse), index, compared); !st.ok()) return st;
     coarse.reset();
     // Creases snap the control mesh in place (find_creases): a mesh with
-    // them keeps the step's bits rather than being snapped twice.
-    if (e.creases.creases == 0 && e.creases.snapped == 0 &&
-        control_bits(e, index, o, BitsRule::from_level0) != e.control_bits) {
+    // them keeps the step's bits rather than being snapped twice (and
+    // takes no smoothing: encode_levels).
+    const bool rebits = control_bits(e, index, o, BitsRule::from_level0) != e.control_bits;
+    const bool smooth = o.smooth_noise && points_are_noisy(index);
+    if (e.creases.creases == 0 && e.creases.snapped == 0 && (rebits || smooth)) {
       const double first = e.seconds.draco + e.seconds.levels;
       if (Status st = encode_over_control(e, index, o, BitsRule::from_level0); !st.ok()) return st;
       // The first pass over the kept mesh was the comparison's cost.
       e.seconds.choice += first;
-      e.control_choice += "; compared with the step's control bits, then encoded with level 0's (" +
-                          std::to_string(e.control_bits) + ")";
+      e.control_choice += "; compared with the step's control bits" + std::string(smooth ? " and unsmoothed levels" : "") +
+                          ", then encoded with level 0's (" + std::to_string(e.control_bits) + ")" +
+                          (smooth ? " and smoothed levels" : "");
     }
   }
   const uint32_t level_count = e.level_count;

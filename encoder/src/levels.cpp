@@ -104,7 +104,7 @@ Result<EncodedLevels> encode_levels(const TriangleMesh& control, const PointInde
     scratch->give(mine);
     return s;
   };
-  if (o.smooth_noise && widen) sampler.smoothing = kNeighbourWeight, sampler.smooth_from = kSmoothFromLevel;
+  if (o.smooth_noise && widen) sampler.smoothing = kNeighbourWeight;
   const size_t point_count = points.points().size();
   sampler.dead_zone = [point_count](size_t odd, size_t even) { return dead_zone_steps(odd, point_count, even); };
   return encode_levels(control, sampler, o);
@@ -134,9 +134,12 @@ Result<EncodedLevels> encode_levels(const TriangleMesh& control, const LevelSamp
     // With rate-distortion optimised quantization, each odd vertex's
     // displacement over the step, and which ones must keep their rounding.
     const bool rdo = o.rdo_lambda > 0 && l >= o.rdo_first_level && o.creases.empty();
-    // Smoothing: a first pass on a copy samples every odd vertex, the
-    // averaged displacements are then rounded as `choose` would have.
-    const bool smooth = sampler.smoothing > 0 && !rdo && o.creases.empty() && l >= sampler.smooth_from && !std::isinf(dead_zone);
+    // Smoothing: only on the level that crosses the points' density (its
+    // dead zone past plain rounding, not yet infinite), the last that
+    // stores anything (displacement_smoothing.h).  A first pass on a copy
+    // samples every odd vertex, the averaged displacements are then rounded
+    // as `choose` would have.
+    const bool smooth = sampler.smoothing > 0 && !rdo && o.creases.empty() && dead_zone > 0.5 && !std::isinf(dead_zone);
     std::vector<double> sampled(smooth ? odd : 0, 0.0), zones(smooth ? odd : 0, 0.5);
     std::vector<uint8_t> sampled_ok(smooth ? odd : 0, 0);
     std::vector<double> scaled(rdo ? odd : 0, 0.0);

@@ -288,3 +288,52 @@ TEST_CASE("smooth_displacements: each odd vertex's value moves toward its odd ne
   // Weight 0: the samples as they came.
   CHECK(smooth_displacements(tri, 3, d, ok, 0.0) == d);
 }
+
+TEST_CASE("noise smoothing touches only the level that crosses the points' density") {
+  // An icosahedron refined four times (30, 120, 480, 1920 odd vertices)
+  // over "300 points": levels 1-2 are under the density (plain rounding),
+  // level 3 crosses it (dead zone 1 step), level 4 refines a level already
+  // denser than the points (nothing stored).  The sampler returns the
+  // distance to the unit sphere plus a wobble that differs from vertex to
+  // vertex, as a fit's noise does.  Smoothing from level 2 on cost the
+  // noisy rd_bench clouds 9-20% of their level-2 error (bench/rd_bench.md,
+  // eleventh session); it must leave every level before the crossing one
+  // as sampled.
+  const TriangleMesh control = test::icosahedron();
+  LevelSampler sampler;
+  sampler.sample = [](uint32_t, const double p[3], const double n[3], double half_length) {
+    const double r = std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
+    const double along = (p[0] * n[0] + p[1] * n[1] + p[2] * n[2]) / r;
+    const double wobble = 0.01 * std::sin(1000.0 * (p[0] + 2 * p[1] + 3 * p[2]));
+    Sample s;
+    s.distance = std::clamp((1 - r) / std::max(along, 0.5) + wobble, -half_length, half_length);
+    return s;
+  };
+  sampler.dead_zone = [](size_t odd, size_t even) { return dead_zone_steps(odd, 300, even); };
+  LevelEncodeOptions o;
+  o.levels = 4;
+  o.step = 0.002f;
+  o.threads = 1;
+  auto plain = encode_levels(control, sampler, o);
+  sampler.smoothing = kNeighbourWeight;
+  auto smoothed = encode_levels(control, sampler, o);
+  REQUIRE(plain.ok());
+  REQUIRE(smoothed.ok());
+  const auto& a = plain.value().levels;
+  const auto& b = smoothed.value().levels;
+  REQUIRE(a.size() == 4);
+  REQUIRE(b.size() == 4);
+  // Levels 1 and 2: the very same integers.
+  CHECK(a[0].q == b[0].q);
+  CHECK(a[1].q == b[1].q);
+  // Level 3 smoothed: most integers move (the wobble, 5 steps, differs
+  // from each vertex to its neighbours).
+  REQUIRE(a[2].q.size() == 480);
+  REQUIRE(b[2].q.size() == 480);
+  size_t moved = 0;
+  for (size_t e = 0; e < 480; ++e) moved += a[2].q[e] != b[2].q[e];
+  CHECK(moved > 240);
+  // Level 4 stores nothing either way.
+  CHECK(std::all_of(a[3].q.begin(), a[3].q.end(), [](int32_t q) { return q == 0; }));
+  CHECK(std::all_of(b[3].q.begin(), b[3].q.end(), [](int32_t q) { return q == 0; }));
+}

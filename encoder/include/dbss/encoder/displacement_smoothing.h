@@ -10,9 +10,16 @@
 namespace dbss {
 
 // With EncodeOptions::smooth_noise, on a noisy cloud (points_are_noisy),
-// levels from this one on code the smoothed displacements.
-inline constexpr uint32_t kSmoothFromLevel = 2;
-// The neighbours' share of a smoothed displacement.
+// the level that crosses the points' density (the last that stores
+// anything: dead_zone_steps) codes the smoothed displacements; the levels
+// before it code their samples as they are.  Measured (bench/rd_bench.md,
+// eleventh session): smoothing every level from level 2 on cost the noisy
+// bunny00 (rd_bench, noise 2e-3) 9% at level 2 and the eight 20%; on the
+// crossing level alone levels 0 to the one before it are unchanged, and
+// the rise after it falls (eight 1.022-1.025 -> 1.016-1.018, noisy torus
+// 1.030-1.037 -> 1.023-1.030) with 17-22% fewer bytes.
+// The neighbours' share of a smoothed displacement (1.0 measured no better
+// on the noisy torus).
 inline constexpr double kNeighbourWeight = 0.8;
 
 // `refined`: the level's triangles (odd vertex e is vertex `even` + e);
@@ -29,9 +36,9 @@ inline constexpr double kNeighbourWeight = 0.8;
 // of the diagonal).  Averaged with their neighbours the samples' errors
 // vary smoothly and are smaller.  Measured there (seeds 1-2): the floor
 // -5.6%, 6% fewer bytes, the rise into the first zero level 3.5-3.7% ->
-// 2.4-2.6%.  Not the default: on the noisy eight (rd_bench, noise 2e-3)
-// the control choice then keeps the default mesh, and the file is 30% larger
-// for a 3% higher floor.  A neighbour's displacement is measured along its own normal
+// 2.4-2.6% (smoothing from level 2 on).  The control mesh is chosen without
+// it (encode.cpp): with it, the noisy eight kept the default mesh and its
+// file grew 30%.  A neighbour's displacement is measured along its own normal
 // from its own predicted point: on a smooth level the two differ by far
 // less than the noise.
 std::vector<double> smooth_displacements(std::span<const uint32_t> refined, size_t even, std::span<const double> d,

@@ -55,12 +55,13 @@ struct EncodeOptions {
   // points (control_bits_for_error); false: from the step alone
   // (control_bits_for_step), as before.
   bool control_bits_from_level0 = true;
-  // Point path, noisy clouds: each level's displacements from level 2 on
-  // averaged with their neighbours' (displacement_smoothing.h).  Off by
-  // default: it lowers the noisy torus's floor but, through the control
-  // choice, costs the noisy eight 30% more bytes (bench/rd_bench.md, tenth
-  // session).
-  bool smooth_noise = false;
+  // Point path, noisy clouds (points_are_noisy): the displacements of the
+  // level that crosses the points' density averaged with their neighbours'
+  // (displacement_smoothing.h), after the control choice, which compares
+  // its candidates without it.  Noise 2e-3 (rd_bench): the rise past that
+  // level 2.2-2.5% -> 1.6-1.8% on the eight, 17-22% fewer bytes
+  // (bench/rd_bench.md, eleventh session).  Clean clouds: no change.
+  bool smooth_noise = true;
   uint32_t levels = 3;    // displacement levels, 0..kMaxLevelsInFormat, or kAutoLevels
   // Quantization: `step` (model units) when > 0, else derived from `error`
   // (largest rounding error relative to the bounding-box diagonal; step = 2 *

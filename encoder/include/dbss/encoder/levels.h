@@ -34,8 +34,9 @@ struct LevelEncodeOptions {
   // rdo_first_level and finer, with this lambda in squared steps per bit;
   // 0: plain rounding.  Not with creases.
   double rdo_lambda = 0;
-  // Noisy clouds: displacements averaged with their neighbours' from
-  // kSmoothFromLevel on (displacement_smoothing.h); false: as sampled.
+  // Noisy clouds: the displacements of the level that crosses the points'
+  // density averaged with their neighbours' (displacement_smoothing.h);
+  // false: as sampled.
   bool smooth_noise = false;
   uint32_t rdo_first_level = 1;
 };
@@ -104,10 +105,10 @@ struct LevelSampler {
   // `n` is the vertex's unit normal.
   std::function<double(uint32_t odd, const double m[3], const double b[3], const double n[3], double half_length)>
       boundary;
-  // The neighbours' weight in each level's sampled displacements from level
-  // `smooth_from` on (smooth_displacements); 0: as sampled.
+  // The neighbours' weight in the sampled displacements of the level that
+  // crosses the points' density (`dead_zone` past 0.5 and finite:
+  // smooth_displacements); 0: as sampled.
   double smoothing = 0;
-  uint32_t smooth_from = 0;
 };
 
 // `control` must be the Draco-decoded control mesh.  Displacements from
