@@ -20,8 +20,16 @@
 // levels against the truth with the points' sampler and with the oracle
 // sampler (the same control mesh and tags), and with a step 8 times finer.
 //
-// usage: crease_rise_probe [--points N] [--seed S] [--levels L] [--samples S] SHAPE...
+// With --at L (1..levels) the odd vertices of level L instead (the levels
+// before it replayed from the file's integers); past level 1, or with
+// --bins, classed by the stencil point's distance from the nearest true
+// feature line rather than by parent edge.
+//
+// usage: crease_rise_probe [--points N] [--seed S] [--levels L] [--at L] [--bins] [--samples S] SHAPE...
 //   SHAPE: cube, cylinder, roof, or a mesh file
+//   PROBE_DUMP=CLASS (environment): each odd vertex of that class (its number in the table, from 0)
+//     whose sample is over PROBE_MIN (default 1e-3) of the diagonal from the truth's hit: point,
+//     normal, truth, sample; PROBE_ODD=K: the 32 points nearest odd vertex K and their normals
 #include <algorithm>
 #include <array>
 #include <cmath>

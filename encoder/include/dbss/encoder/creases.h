@@ -15,12 +15,12 @@ namespace dbss {
 struct CreaseOptions {
   // Smallest angle between the two sides' planes, degrees; <= 0: off (no
   // tag is found and the mesh is not touched, so the file is a 1.0 file).
-  // Off by default: measured (bench/crease_bench.md), with the control mesh
-  // aligned to the features (crease_align.h) and one-sided sampling, the
-  // mean error of levels 1-3 drops on all five machined shapes (2-80%), but
-  // the scanned bunny (bunny00) gets false creases (its level-3 Hausdorff
-  // distance 0.92% -> 1.79%, 18% more bytes), the roof's level 3 Hausdorff
-  // rises, and level 1 is still worse than level 0 everywhere.
+  // Off by default: measured (bench/crease_bench.md, eleventh session), the
+  // machined shapes' error no longer rises with level (but for the roof at
+  // one seed of three), yet scanned smooth shapes get false creases
+  // (bunny00 70 edges, armadillo 11) and a file with any tag pays the CREA
+  // bitmap (about 900 bytes) and the control mesh's rounding along the
+  // surface: level 3 23-49% more bytes and 6-43% more error there.
   double angle_degrees = 0;
   // Each side's RMS distance from its plane, relative to the neighbourhood's
   // radius, must stay under this: a crease has flat sides near it, a smooth
