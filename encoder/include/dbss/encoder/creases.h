@@ -17,10 +17,11 @@ struct CreaseOptions {
   // tag is found and the mesh is not touched, so the file is a 1.0 file).
   // Off by default: measured (bench/crease_bench.md, eleventh session), the
   // machined shapes' error no longer rises with level (but for the roof at
-  // one seed of three), yet scanned smooth shapes get false creases
-  // (bunny00 70 edges, armadillo 11) and a file with any tag pays the CREA
-  // bitmap (about 900 bytes) and the control mesh's rounding along the
-  // surface: level 3 23-49% more bytes and 6-43% more error there.
+  // one seed of three), yet a torus gets a false crease at two seeds of
+  // three and scanned smooth shapes several (bunny00 70-89 edges, armadillo
+  // 5-16, knot1 1-4), and a tagged file also pays the CREA bitmap (about
+  // 900 bytes) and keeps the step's Draco bits, not rounded along the
+  // surface: level 3 11-51% more bytes there (bunny00 40% more error).
   double angle_degrees = 0;
   // Each side's RMS distance from its plane, relative to the neighbourhood's
   // radius, must stay under this: a crease has flat sides near it, a smooth
