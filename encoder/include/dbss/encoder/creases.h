@@ -15,12 +15,13 @@ namespace dbss {
 struct CreaseOptions {
   // Smallest angle between the two sides' planes, degrees; <= 0: off (no
   // tag is found and the mesh is not touched, so the file is a 1.0 file).
-  // Off by default: measured (bench/crease_bench.md), with the control mesh
-  // aligned to the features (crease_align.h) and one-sided sampling, the
-  // mean error of levels 1-3 drops on all five machined shapes (2-80%), but
-  // the scanned bunny (bunny00) gets false creases (its level-3 Hausdorff
-  // distance 0.92% -> 1.79%, 18% more bytes), the roof's level 3 Hausdorff
-  // rises, and level 1 is still worse than level 0 everywhere.
+  // Off by default: measured (bench/crease_bench.md, eleventh session), the
+  // machined shapes' error no longer rises with level (but for the roof at
+  // one seed of three), yet a torus gets a false crease at two seeds of
+  // three and scanned smooth shapes several (bunny00 70-89 edges, armadillo
+  // 5-16, knot1 1-4), and a tagged file also pays the CREA bitmap (about
+  // 900 bytes) and keeps the step's Draco bits, not rounded along the
+  // surface: level 3 11-51% more bytes there (bunny00 40% more error).
   double angle_degrees = 0;
   // Each side's RMS distance from its plane, relative to the neighbourhood's
   // radius, must stay under this: a crease has flat sides near it, a smooth
