@@ -409,7 +409,19 @@ Result<Encoding> encode_points(const PointIndex& input_index, const EncodeOption
     // them keeps the step's bits rather than being snapped twice (and
     // takes no smoothing: encode_levels).
     const bool rebits = control_bits(e, index, o, BitsRule::from_level0) != e.control_bits;
-    const bool smooth = o.smooth_noise && points_are_noisy(index);
+    // Smoothing acts only on a level that crosses the points' density
+    // (encode_levels): a noisy file that stops before one is the same
+    // without it, so it is neither encoded again nor said to be smoothed.
+    const auto crosses_density = [&e, &index] {
+      const std::vector<std::vector<float>>& at = e.levels.positions;
+      for (size_t l = 1; l < at.size(); ++l) {
+        const size_t even = at[l - 1].size() / 3, odd = at[l].size() / 3 - even;
+        const double zone = dead_zone_steps(odd, index.points().size(), even);
+        if (zone > 0.5 && !std::isinf(zone)) return true;
+      }
+      return false;
+    };
+    const bool smooth = o.smooth_noise && points_are_noisy(index) && crosses_density();
     if (e.creases.creases == 0 && e.creases.snapped == 0 && (rebits || smooth)) {
       const double first = e.seconds.draco + e.seconds.levels;
       if (Status st = encode_over_control(e, index, o, BitsRule::from_level0); !st.ok()) return st;
