@@ -447,9 +447,12 @@ int main(int argc, char** argv) {
               "those bounds with a warning; SILENT = outside them with none.  surf, dropped, warnings: the surface\n"
               "mode chosen, points dropped as outliers and check_scan()'s warning codes ('-': this build has none).\n",
               o.levels, o.levels);
-  for (const auto& [name, mesh] : complete) {
+  for (const auto& entry : complete) {
     // The reference surfaces themselves: their topology, and the complete
-    // scan's points to them.
+    // scan's points to them.  (Named, not a structured binding: clang 14
+    // refuses a binding captured by a lambda.)
+    const std::string& name = entry.first;
+    const auto& mesh = entry.second;
     const auto source = std::find_if(complete_scans.begin(), complete_scans.end(), [&](const auto& c) { return c.first == name; });
     const PointCloud whole = source->second();
     const dt::Topology topo = dt::topology(mesh);
