@@ -115,8 +115,13 @@ struct CreaseOptions {
   // candidate tagged), judge the chosen ones again with the tags as they
   // end up, untagging any whose worst stencil offset is no longer halved
   // (an edge between a tagged and an untagged candidate is otherwise never
-  // measured in its final configuration); up to three rounds.
-  bool flat_fan_check = true;
+  // measured in its final configuration); up to three rounds.  Off: with
+  // the wedge sampler beside lines (sampling.cpp) the check's dropped tags
+  // cost more than they save (crease_bench, 3 seeds, level 3, on -> off:
+  // cylinder Hausdorff worst 1.14 -> 0.96%, cube 0.79 -> 0.62% with no
+  // L2 -> L3 rise, fandisk's L2 -> L3 rise 1.045 -> none; roof worst
+  // 0.68 -> 0.75%: bench/crease_bench.md, eleventh session, merged).
+  bool flat_fan_check = false;
   // Retry, with a lower quality floor, the move onto its line of a vertex
   // in a gap of the line's chain (crease_align.cpp 2a).
   bool gap_snaps = true;
