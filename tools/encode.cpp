@@ -280,21 +280,21 @@ int run_encode(const std::vector<std::string_view>& args) {
   row("self-check", e.seconds.check, nullptr, std::to_string(e.check.warnings.size()) + " warning(s)");
   row("container", e.seconds.serialize, nullptr, std::to_string(e.bytes.size()) + " bytes");
   if (!dump.empty()) std::printf("stages written to %s/\n", dump.c_str());
-  if (e.level_count > 0 && report) {
+  if (e.level_count > 0) {
     // Quality, relative to the diagonal: the points' mean distance to each
     // level's surface, and each level's vertices' mean distance to the
     // surface of the points (a plane through their 8 nearest points).
     // Against the points the surface was built from (outliers dropped):
     // the input's own index when they are the input.
     std::unique_ptr<PointIndex> cleaned_index;
-    if (e.points.size() != pc.size()) cleaned_index = std::make_unique<PointIndex>(e.points);
+    if (report && e.points.size() != pc.size()) cleaned_index = std::make_unique<PointIndex>(e.points);
     const PointIndex& index = cleaned_index ? *cleaned_index : input_index;
     // The points' distance over at most 2^18 of them evenly spaced in input
     // order, as the self-check measures it: over all of 10M points, each
     // level took longer than the encoding.
     std::vector<float> sampled;
     const size_t n = e.points.size(), m = std::min<size_t>(n, size_t{1} << 18);
-    if (m < n)
+    if (report && m < n)
       for (size_t s = 0; s < m; ++s) sampled.insert(sampled.end(), &e.points.xyz[3 * (s * n / m)], &e.points.xyz[3 * (s * n / m) + 3]);
     const std::vector<float>& report_points = m < n ? sampled : e.points.xyz;
     std::printf("\n%-5s %9s %9s %10s %11s %9s %8s %11s %11s\n", "level", "odd", "vertices", "step", "clamped", "bytes",
@@ -302,18 +302,22 @@ int run_encode(const std::vector<std::string_view>& args) {
     for (uint32_t l = 0; l <= e.level_count; ++l) {
       PointCloud mesh_pts;
       mesh_pts.xyz = e.levels.positions[l];
-      double to_mesh = points_to_mesh(report_points, {e.levels.positions[l], e.levels.triangles[l]}).mean;
-      double to_pts = vertices_to_points_surface(mesh_pts.xyz, index).mean;
-      to_mesh /= e.diagonal;
-      to_pts /= e.diagonal;
+      // --no-report: the sizes cost nothing and stay; the distances, as
+      // costly as the encoding on a large input, print '-'.
+      char to_mesh[16] = "-", to_pts[16] = "-";
+      if (report) {
+        std::snprintf(to_mesh, sizeof to_mesh, "%.3e",
+                      points_to_mesh(report_points, {e.levels.positions[l], e.levels.triangles[l]}).mean / e.diagonal);
+        std::snprintf(to_pts, sizeof to_pts, "%.3e", vertices_to_points_surface(mesh_pts.xyz, index).mean / e.diagonal);
+      }
       if (l == 0) {
-        std::printf("%-5u %9s %9zu %10s %11s %9zu %8s %11.3e %11.3e\n", l, "-", mesh_pts.size(), "-", "-",
+        std::printf("%-5u %9s %9zu %10s %11s %9zu %8s %11s %11s\n", l, "-", mesh_pts.size(), "-", "-",
                     e.contents.control_mesh.size(), "-", to_mesh, to_pts);
       } else {
         const LevelStats& ls = e.levels.stats[l - 1];
         char clamped[32];
         std::snprintf(clamped, sizeof clamped, "%zu (%.2f%%)", ls.clamped, 100.0 * ls.clamped / std::max<size_t>(1, ls.odd));
-        std::printf("%-5u %9zu %9zu %10.3g %11s %9zu %8.3f %11.3e %11.3e\n", l, ls.odd, mesh_pts.size(), ls.step, clamped,
+        std::printf("%-5u %9zu %9zu %10.3g %11s %9zu %8.3f %11s %11s\n", l, ls.odd, mesh_pts.size(), ls.step, clamped,
                     ls.bytes, 8.0 * ls.bytes / std::max<size_t>(1, ls.odd), to_mesh, to_pts);
       }
     }
