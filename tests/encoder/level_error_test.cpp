@@ -164,6 +164,20 @@ TEST_CASE("the control mesh chosen by rate-distortion is never worse against the
   }
 }
 
+// The torus scanned with 8,000 points and Gaussian noise of 1e-3 of the
+// diagonal per coordinate (seed 11): the noisy cloud of the tests below.
+static Scan noisy_torus_scan(const test::Shape& s) {
+  Scan scan = scan_of(s, 8000);
+  PointCloud& pc = scan.points;
+  double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+  for (size_t i = 0; i < pc.xyz.size(); ++i) lo[i % 3] = std::min(lo[i % 3], double{pc.xyz[i]}), hi[i % 3] = std::max(hi[i % 3], double{pc.xyz[i]});
+  const double diagonal = std::sqrt(std::pow(hi[0] - lo[0], 2) + std::pow(hi[1] - lo[1], 2) + std::pow(hi[2] - lo[2], 2));
+  std::mt19937 rng(11);
+  std::normal_distribution<double> normal(0.0, 1e-3 * diagonal);
+  for (float& x : pc.xyz) x = static_cast<float>(x + normal(rng));
+  return scan;
+}
+
 TEST_CASE("a noisy cloud: no level farther from the true surface than the one before, to level 5") {
   // Gaussian noise of 1e-3 of the diagonal per coordinate.  The levels past
   // the points store zeros, and the butterfly turns the vertices' leftover
@@ -175,14 +189,8 @@ TEST_CASE("a noisy cloud: no level farther from the true surface than the one be
   // and the fall to level 3 must hold.
   const test::Shape s = test::genus_shapes()[1];  // torus
   INFO(s.name);
-  Scan scan = scan_of(s, 8000);
+  Scan scan = noisy_torus_scan(s);
   PointCloud& pc = scan.points;
-  double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
-  for (size_t i = 0; i < pc.xyz.size(); ++i) lo[i % 3] = std::min(lo[i % 3], double{pc.xyz[i]}), hi[i % 3] = std::max(hi[i % 3], double{pc.xyz[i]});
-  const double diagonal = std::sqrt(std::pow(hi[0] - lo[0], 2) + std::pow(hi[1] - lo[1], 2) + std::pow(hi[2] - lo[2], 2));
-  std::mt19937 rng(11);
-  std::normal_distribution<double> normal(0.0, 1e-3 * diagonal);
-  for (float& x : pc.xyz) x = static_cast<float>(x + normal(rng));
   EncodeOptions o;
   o.levels = 5;
   auto e = encode_points(pc, o);
@@ -206,14 +214,8 @@ TEST_CASE("a noisy cloud that stops before the points' density: not smoothed and
   // control.choice must not claim smoothed levels (it did, review of the
   // eleventh session).  The file is the same with smoothing off.
   const test::Shape s = test::genus_shapes()[1];  // torus
-  Scan scan = scan_of(s, 8000);
+  Scan scan = noisy_torus_scan(s);
   PointCloud& pc = scan.points;
-  double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
-  for (size_t i = 0; i < pc.xyz.size(); ++i) lo[i % 3] = std::min(lo[i % 3], double{pc.xyz[i]}), hi[i % 3] = std::max(hi[i % 3], double{pc.xyz[i]});
-  const double diagonal = std::sqrt(std::pow(hi[0] - lo[0], 2) + std::pow(hi[1] - lo[1], 2) + std::pow(hi[2] - lo[2], 2));
-  std::mt19937 rng(11);
-  std::normal_distribution<double> normal(0.0, 1e-3 * diagonal);
-  for (float& x : pc.xyz) x = static_cast<float>(x + normal(rng));
   EncodeOptions o;
   o.levels = 1;
   auto on = encode_points(pc, o);
