@@ -58,6 +58,8 @@
 #include <unordered_map>
 #include <vector>
 
+#include "half_edge_edges.h"
+
 #include "cut_holes.h"
 #include "dbss/encoder/encode.h"
 #include "dbss/encoder/encode_mesh.h"
@@ -119,23 +121,6 @@ struct Model {
     return bits;
   }
 };
-
-// Edge ids of a level's half-edges in the canonical order (decoding.md 3):
-// level l+1's odd vertex of edge e is vertex V_l + e.
-std::vector<uint32_t> half_edge_edges(const std::vector<uint32_t>& T) {
-  std::unordered_map<uint64_t, uint32_t> seen;
-  seen.reserve(T.size());
-  std::vector<uint32_t> id(T.size());
-  uint32_t next = 0;
-  for (size_t h = 0; h < T.size(); ++h) {
-    const uint32_t a = T[h], b = T[h % 3 == 2 ? h - 2 : h + 1];
-    const uint64_t key = uint64_t{std::min(a, b)} << 32 | std::max(a, b);
-    auto [it, fresh] = seen.emplace(key, next);
-    if (fresh) ++next;
-    id[h] = it->second;
-  }
-  return id;
-}
 
 void corner(const std::vector<float>& P, uint32_t v, double out[3]) {
   for (int a = 0; a < 3; ++a) out[a] = P[3 * size_t{v} + a];

@@ -24,6 +24,8 @@
 #include <unordered_map>
 #include <vector>
 
+#include "half_edge_edges.h"
+
 #include "dbss/encoder/encode_mesh.h"
 #include "dbss/encoder/mesh_input.h"
 #include "dbss/io/geometry_files.h"
@@ -76,22 +78,6 @@ struct Model {
     q2 = q1, q1 = v;
   }
 };
-
-// Edge ids of a level's half-edges in the canonical order (decoding.md 3).
-std::vector<uint32_t> half_edge_edges(const std::vector<uint32_t>& T) {
-  std::unordered_map<uint64_t, uint32_t> seen;
-  seen.reserve(T.size());
-  std::vector<uint32_t> id(T.size());
-  uint32_t next = 0;
-  for (size_t h = 0; h < T.size(); ++h) {
-    const uint32_t a = T[h], b = T[h % 3 == 2 ? h - 2 : h + 1];
-    const uint64_t key = uint64_t{std::min(a, b)} << 32 | std::max(a, b);
-    auto [it, fresh] = seen.emplace(key, next);
-    if (fresh) ++next;
-    id[h] = it->second;
-  }
-  return id;
-}
 
 }  // namespace
 
