@@ -271,7 +271,7 @@ class TargetCurve {
     if (!e.ok()) return false;
     const Encoding& en = e.value().encoding;
     const std::string& choice = en.control_choice;
-    candidates_ += choice.find("floor-bound") != std::string::npos;
+    candidates_ += choice.find("floor-bound") != std::string::npos && choice.find("not floor-bound") == std::string::npos;
     larger_ += choice.rfind("kept the larger", 0) == 0;
     Point p;
     for (uint32_t l = 0; l <= en.level_count; ++l) {
