@@ -5,7 +5,7 @@
 // bounding-box diagonal (measure/mesh_distance).  Also: dbss's QEM against
 // meshoptimizer's simplifier for the control mesh.
 //
-//   lod_bench [--levels N] [--control-faces F] [--control-bits B] [--cut-holes H] [--hole-radius R] [--cut-only] [--loop-faces N] [--hole-tolerance T] [--hole-faces-per-vertex C] [--errors E1,E2,..] [--samples N] [--detail] [--quick] [--no-search] [--dense-step-ratio R] [--no-boundary-values] [--rdo LAMBDA] [--rdo-from LEVEL] [--skip-absent] MESH...
+//   lod_bench [--levels N] [--control-faces F] [--control-bits B] [--cut-holes H] [--hole-radius R] [--cut-only] [--loop-faces N] [--hole-tolerance T] [--hole-faces-per-vertex C] [--errors E1,E2,..] [--samples N] [--detail] [--quick] [--no-search] [--dense-step-ratio R] [--no-boundary-values] [--fixed-control] [--floor-ratio R] [--rdo LAMBDA] [--rdo-from LEVEL] [--skip-absent] MESH...
 //
 // With no MESH: the libcgal-demo meshes under test-data/ (closed, with
 // holes, several components); --cut-holes H adds each mesh again with H
@@ -59,6 +59,8 @@ struct Args {
   double dense_step_ratio = kMeshDenseStepRatio;  // --dense-step-ratio R (1: one step for every level)
   double rdo_lambda = 0;        // --rdo L: RDO quantization with lambda L (squared steps per bit)
   uint32_t rdo_first_level = 1;  // --rdo-from L
+  bool fixed_control = false;   // --fixed-control: the default control mesh, no size choice (EncodeOptions::choose_control)
+  double floor_ratio = kMeshFloorRatio;  // --floor-ratio R: the size choice's trigger (MeshEncodeOptions::floor_ratio)
   bool boundary_values = true;  // --no-boundary-values: normal displacements only (format 1.2, no BDRY)
   uint32_t cut_holes = 0;  // also run each closed mesh with this many holes cut in it
   double hole_radius = 0.04;  // --hole-radius R: the cut holes' radius over the diagonal
@@ -77,6 +79,7 @@ MeshEncodeOptions mesh_options(const Args& a) {
   m.boundary_values = a.boundary_values;
   m.rdo_lambda = a.rdo_lambda;
   m.rdo_first_level = a.rdo_first_level;
+  m.floor_ratio = a.floor_ratio;
   return m;
 }
 
@@ -230,6 +233,9 @@ class TargetCurve {
   }
 
   size_t encodings() const { return encodings_; }
+  // Of them: with a larger control candidate encoded (floor-bound), and with it kept.
+  size_t candidates() const { return candidates_; }
+  size_t larger() const { return larger_; }
   double seconds() const { return seconds_; }
 
  private:
@@ -260,9 +266,13 @@ class TargetCurve {
     o.control_bits = args_.control_bits;
     o.error = target;
     o.threads = 2;
+    o.choose_control = !args_.fixed_control;
     auto e = encode_mesh(input_, o, mesh_options(args_));
     if (!e.ok()) return false;
     const Encoding& en = e.value().encoding;
+    const std::string& choice = en.control_choice;
+    candidates_ += choice.find("floor-bound") != std::string::npos && choice.find("not floor-bound") == std::string::npos;
+    larger_ += choice.rfind("kept the larger", 0) == 0;
     Point p;
     for (uint32_t l = 0; l <= en.level_count; ++l) {
       const TriangleMesh m{en.levels.positions[l], en.levels.triangles[l]};
@@ -280,7 +290,7 @@ class TargetCurve {
   double diag_;
   MeshDistanceOptions mo_;
   std::map<double, Point> points_;
-  size_t encodings_ = 0;
+  size_t encodings_ = 0, candidates_ = 0, larger_ = 0;
   double seconds_ = 0;
 };
 
@@ -369,6 +379,7 @@ int run_mesh(const std::string& path, Args args, uint32_t holes = 0) {
     o.control_bits = args.control_bits;
     o.error = err;
     o.threads = 2;
+    o.choose_control = !args.fixed_control;
     auto t = Clock::now();
     auto e = encode_mesh(input, o, mesh_options(args));
     const double enc_s = since(t);
@@ -379,6 +390,7 @@ int run_mesh(const std::string& path, Args args, uint32_t holes = 0) {
     const Encoding& en = e.value().encoding;
     std::printf("\ndbss from the mesh, error target %g: encode %.2f s (QEM %.2f s, casting %.2f s), %zu bytes\n\n", err, enc_s,
                 en.seconds.control, en.seconds.levels, en.bytes.size());
+    if (!en.control_choice.empty()) std::printf("control choice (%.2f s): %s\n\n", en.seconds.choice, en.control_choice.c_str());
     std::printf("| level | triangles | prefix bytes | error | decode ms (levels 0..l) |\n|---|---|---|---|---|\n");
     for (uint32_t l = 0; l <= en.level_count; ++l) {
       const TriangleMesh m{en.levels.positions[l], en.levels.triangles[l]};
@@ -436,7 +448,8 @@ int run_mesh(const std::string& path, Args args, uint32_t holes = 0) {
                   static_cast<unsigned long long>(best->prefix), best->error, best->target, best->level,
                   double(best->prefix) / d.bytes, grid ? grid : "not reached");
     }
-    std::printf("\nsearch: %zu encodings, %.1f s encoding and measuring\n", curve.encodings(), curve.seconds());
+    std::printf("\nsearch: %zu encodings (%zu with a larger control candidate, %zu kept it), %.1f s encoding and measuring\n",
+                curve.encodings(), curve.candidates(), curve.larger(), curve.seconds());
   }
 
   // One .dbss (the first error target) against a meshoptimizer LOD chain of
@@ -492,6 +505,8 @@ int main(int argc, char** argv) {
     else if (a == "--quick") args.quick = true;
     else if (a == "--no-search") args.no_search = true;
     else if (a == "--no-boundary-values") args.boundary_values = false;
+    else if (a == "--fixed-control") args.fixed_control = true;
+    else if (a == "--floor-ratio" && i + 1 < argc) args.floor_ratio = std::atof(argv[++i]);
     else if (a == "--rdo" && i + 1 < argc) args.rdo_lambda = std::atof(argv[++i]);
     else if (a == "--rdo-from" && i + 1 < argc) args.rdo_first_level = static_cast<uint32_t>(std::atoi(argv[++i]));
     else if (a == "--dense-step-ratio" && i + 1 < argc) args.dense_step_ratio = std::atof(argv[++i]);
@@ -505,7 +520,7 @@ int main(int argc, char** argv) {
       }
     } else if (a == "--skip-absent") args.skip_absent = true;
     else if (!a.empty() && a[0] == '-') {
-      std::fprintf(stderr, "usage: lod_bench [--levels N] [--control-faces F] [--control-bits B] [--cut-holes H] [--hole-radius R] [--cut-only] [--loop-faces N] [--hole-tolerance T] [--hole-faces-per-vertex C] [--errors E1,E2] [--samples N] [--detail] [--quick] [--no-search] [--dense-step-ratio R] [--no-boundary-values] [--rdo LAMBDA] [--rdo-from LEVEL] [--skip-absent] MESH...\n");
+      std::fprintf(stderr, "usage: lod_bench [--levels N] [--control-faces F] [--control-bits B] [--cut-holes H] [--hole-radius R] [--cut-only] [--loop-faces N] [--hole-tolerance T] [--hole-faces-per-vertex C] [--errors E1,E2] [--samples N] [--detail] [--quick] [--no-search] [--dense-step-ratio R] [--no-boundary-values] [--fixed-control] [--floor-ratio R] [--rdo LAMBDA] [--rdo-from LEVEL] [--skip-absent] MESH...\n");
       return 1;
     } else args.meshes.push_back(a);
   }

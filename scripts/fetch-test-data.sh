@@ -17,6 +17,7 @@ files=(
   data/meshes/elephant-with-holes.off
   data/meshes/blobby_3cc.off
   data/meshes/camel.off                          # mesh input's needle rule (control_needle_test)
+  data/meshes/cow.off                            # mesh input's control size choice (mesh_control_choice_test)
   data/meshes/anchor.off                         # grid_handles_test (four handles opening at one grid)
   data/points_3/kitten.xyz
   data/points_3/hippo1.ply

@@ -52,6 +52,8 @@ int run_encode_mesh(const std::string& input, const std::string& output, const T
   std::printf("%-22s %9.1f  %u -> %zu triangles, %zu boundary vertices on the input's boundary\n", "QEM control mesh",
               e.seconds.control * 1e3, me.control_stats.faces_before, e.control.triangle_count(),
               me.control_stats.boundary_vertices);
+  if (!e.control_choice.empty())
+    std::printf("%-22s %9.1f  %s\n", "control size choice", e.seconds.choice * 1e3, e.control_choice.c_str());
   std::printf("%-22s %9.1f  %zu bytes, %d-bit positions\n", "Draco", e.seconds.draco * 1e3, e.contents.control_mesh.size(),
               e.control_bits);
   std::printf("%-22s %9.1f  %u level(s)%s\n", "cast displacements", e.seconds.levels * 1e3, e.level_count,

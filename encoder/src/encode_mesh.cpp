@@ -14,6 +14,7 @@
 #include "dbss/encoder/quantize.h"
 #include "dbss/encoder/simplify.h"
 #include "dbss/format/writer.h"
+#include "mesh_control_choice.h"
 
 namespace dbss {
 
@@ -35,39 +36,23 @@ std::vector<uint64_t> level_vertex_counts(uint64_t vertices, uint64_t edges, uin
 
 uint32_t mesh_control_faces(const TriangleMesh& mesh, int64_t genus) { return hole_budget(mesh, genus).faces; }
 
-Result<MeshEncoding> encode_mesh(const TriangleMesh& mesh, const EncodeOptions& o, const MeshEncodeOptions& mo) {
-  if (o.control_bits != 0 && (o.control_bits < 8 || o.control_bits > 30))
-    return Status(ErrorCode::invalid_argument, "control bits must be 8..30, or 0 to derive them from the step");
-  if (o.levels > format::kMaxLevelsInFormat && o.levels != kAutoLevels)
-    return Status(ErrorCode::invalid_argument, "too many levels");
-  if (!(mo.dense_step_ratio >= 1) || !std::isfinite(mo.dense_step_ratio))
-    return Status(ErrorCode::invalid_argument, "the dense levels' step ratio must be finite and at least 1");
-  MeshEncoding me;
-  Encoding& e = me.encoding;
-  auto t = Clock::now();
-  if (o.on_progress) o.on_progress("checking the mesh");
-  auto prepared = prepare_mesh_input(mesh, &me.cleanup);
-  if (!prepared.ok()) return prepared.status();
-  me.input = std::move(prepared).value();
-  me.input_info = mesh_counts(me.input);
-  const TriangleMesh& in = me.input;
-  e.points.xyz = in.positions;
-  const MeshSurface surface(in);
-  e.seconds.outliers = since(t);
+namespace {
 
-  t = Clock::now();
+// The mesh's encoding over a control mesh of `target` faces: QEM, Draco,
+// the levels cast against the input, and the file (without
+// control.choice, which encode_mesh adds once the choice is made).
+Status encode_over_mesh_control(const TriangleMesh& in, const MeshInfo& info, const MeshSurface& surface, uint32_t target,
+                                const EncodeOptions& o, const MeshEncodeOptions& mo, Encoding& e, MeshControlStats& stats) {
+  auto t = Clock::now();
   if (o.on_progress) o.on_progress("simplifying");
-  const uint32_t target = o.control.control_faces
-                              ? o.control.control_faces
-                              : mesh_control_faces(in, me.input_info.genus);
-  auto control = control_mesh_from_mesh(in, surface, target, &me.control_stats);
+  auto control = control_mesh_from_mesh(in, surface, target, &stats);
   if (!control.ok()) return control.status();
   e.stages.control = std::move(control).value();
-  e.stages.open = !me.input_info.closed;
-  e.stages.surface_reason = "mesh input: " + std::to_string(me.input_info.components) + " component(s), genus " +
-                            std::to_string(me.input_info.genus) + ", " + std::to_string(me.input_info.boundary_loops) +
+  e.stages.open = !info.closed;
+  e.stages.surface_reason = "mesh input: " + std::to_string(info.components) + " component(s), genus " +
+                            std::to_string(info.genus) + ", " + std::to_string(info.boundary_loops) +
                             " boundary loop(s)";
-  e.stages.simplify_stats = {me.control_stats.faces_before, me.control_stats.faces_after};
+  e.stages.simplify_stats = {stats.faces_before, stats.faces_after};
   e.seconds.control = since(t);
 
   format::FileContents& c = e.contents;
@@ -84,7 +69,7 @@ Result<MeshEncoding> encode_mesh(const TriangleMesh& mesh, const EncodeOptions& 
     // rounding may not merge or fold anything that matters) is checking
     // them all.
     const MeshInfo got = mesh_info(e.control);
-    const MeshInfo& want = me.input_info;
+    const MeshInfo& want = info;
     if (got.genus != want.genus || got.components != want.components || got.boundary_loops != want.boundary_loops)
       // Seen on inputs with parts too small to be a surface (two triangles
       // back to back): the input's doing, said as such, not an encoder bug.
@@ -201,6 +186,55 @@ Result<MeshEncoding> encode_mesh(const TriangleMesh& mesh, const EncodeOptions& 
   e.bytes = std::move(file.value().bytes);
   e.toc = std::move(file.value().toc);
   e.seconds.serialize = since(t);
+  return {};
+}
+
+}  // namespace
+
+Result<MeshEncoding> encode_mesh(const TriangleMesh& mesh, const EncodeOptions& o, const MeshEncodeOptions& mo) {
+  if (o.control_bits != 0 && (o.control_bits < 8 || o.control_bits > 30))
+    return Status(ErrorCode::invalid_argument, "control bits must be 8..30, or 0 to derive them from the step");
+  if (o.levels > format::kMaxLevelsInFormat && o.levels != kAutoLevels)
+    return Status(ErrorCode::invalid_argument, "too many levels");
+  if (!(mo.dense_step_ratio >= 1) || !std::isfinite(mo.dense_step_ratio))
+    return Status(ErrorCode::invalid_argument, "the dense levels' step ratio must be finite and at least 1");
+  MeshEncoding me;
+  Encoding& e = me.encoding;
+  auto t = Clock::now();
+  if (o.on_progress) o.on_progress("checking the mesh");
+  auto prepared = prepare_mesh_input(mesh, &me.cleanup);
+  if (!prepared.ok()) return prepared.status();
+  me.input = std::move(prepared).value();
+  me.input_info = mesh_counts(me.input);
+  const TriangleMesh& in = me.input;
+  const MeshSurface surface(in);
+  const double prepare_s = since(t);
+
+  const bool choose = o.control.control_faces == 0 && o.choose_control && mo.floor_ratio > 0 && mo.larger_control > 1;
+  const uint32_t target = o.control.control_faces ? o.control.control_faces : mesh_control_faces(in, me.input_info.genus);
+  if (Status st = encode_over_mesh_control(in, me.input_info, surface, target, o, mo, e, me.control_stats); !st.ok()) return st;
+  if (choose) {
+    EncodeOptions candidate_options = o;
+    if (o.on_progress) {
+      const std::string prefix = "control candidate (" + std::to_string(static_cast<uint32_t>(mo.larger_control * target) & ~1u) + " faces): ";
+      candidate_options.on_progress = [prefix, &o](const std::string& s) { o.on_progress(prefix + s); };
+      o.on_progress("measuring the last level's floor");
+    }
+    const MeshControlEncoder encoder = [&](uint32_t faces, Encoding& out, MeshControlStats& stats) {
+      return encode_over_mesh_control(in, me.input_info, surface, faces, candidate_options, mo, out, stats);
+    };
+    choose_mesh_control(e, me.control_stats, target, in, surface, encoder, {mo.floor_ratio, mo.larger_control});
+    // control.choice goes into `meta`: the file is written again with it.
+    const auto ts = Clock::now();
+    e.contents.metadata.push_back({"control.choice", e.control_choice});
+    auto file = format::serialize_with_toc(e.contents, {o.effort});
+    if (!file.ok()) return file.status();
+    e.bytes = std::move(file.value().bytes);
+    e.toc = std::move(file.value().toc);
+    e.seconds.serialize += since(ts);
+  }
+  e.points.xyz = in.positions;
+  e.seconds.outliers = prepare_s;
   return me;
 }
 

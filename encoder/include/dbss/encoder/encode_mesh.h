@@ -34,6 +34,16 @@ struct MeshEncoding {
 // input's density".
 inline constexpr double kMeshDenseStepRatio = 1.5;
 
+// The control size choice for mesh input (mesh_control_choice.h): when the
+// default control mesh's last level is floor-bound (its two-sided error
+// against the input at least kMeshFloorRatio times the error target), a
+// candidate with kMeshLargerControl times the faces is encoded too and kept
+// when it reaches the default's last level's error in fewer bytes.
+// Fitted on seven meshes with bench/lod_bench's equal-error search: see
+// bench/lod_bench.md, "Issue 18, ninth session".
+inline constexpr double kMeshFloorRatio = 0.65;
+inline constexpr double kMeshLargerControl = 1.5;
+
 struct MeshEncodeOptions {
   // kMeshDenseStepRatio; 1: one step for every level.
   double dense_step_ratio = kMeshDenseStepRatio;
@@ -45,6 +55,11 @@ struct MeshEncodeOptions {
   // rdo_quantize.h) from level rdo_first_level on; 0: plain rounding.
   double rdo_lambda = 0;
   uint32_t rdo_first_level = 1;
+  // The control size choice (EncodeOptions::choose_control and no
+  // control.control_faces given): the floor ratio that triggers a
+  // candidate (0: never) and the candidate's size over the default.
+  double floor_ratio = kMeshFloorRatio;
+  double larger_control = kMeshLargerControl;
 };
 
 // The control mesh size for a mesh input (`mesh` prepared, of genus
@@ -79,7 +94,9 @@ inline float mesh_level_step(float step, uint64_t level_vertices, uint64_t fines
 
 // Encodes `mesh` (any triangle mesh: it is prepared first).  Of `options`,
 // outlier removal and the surface/grid/shaping choices of points do not
-// apply; control.control_faces (0: mesh_control_faces of the prepared input), control_bits, levels (kAutoLevels: up to the first
+// apply; control.control_faces (0: mesh_control_faces of the prepared input,
+// or kMeshLargerControl times it when choose_control finds the last level
+// floor-bound: MeshEncodeOptions::floor_ratio), control_bits, levels (kAutoLevels: up to the first
 // level with more vertices than the input), error/step, effort, threads and
 // the names do; levels up to the input's density are quantized finer
 // (mesh_level_step, `mesh_options`).  Errors: invalid_argument for a mesh that is not an
