@@ -36,6 +36,10 @@
 //   the level-0 tags (edge ends, "c" corners) to DIR/SHAPE-creases.txt, each vertex's offset to the
 //   true mesh (x y z per line) to DIR/SHAPE-{on,off}-L.dist, for a closer look
 //   CREASE_BENCH_WORST=1 (environment): print each level's farthest sample (where its Hausdorff figure is)
+//   --noise F: Gaussian noise of F times the true mesh's diagonal added to the points (seeded by --seed)
+//   Tags are also judged against the true mesh's features (edges over the angle): a tagged
+//   control edge is true when its midpoint and ends are within 0.5% of the diagonal of one, else
+//   false; the true features' length farther than that from every tagged edge is missed.
 //   SHAPE: cube, cylinder, roof, sphere, torus (smooth: no crease should be found), or a mesh file (absent with --skip-absent: exit 77 unless CI=true)
 #include <algorithm>
 #include <array>
@@ -43,6 +47,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -102,6 +107,66 @@ std::array<double, 2> percentiles(const dbss::TriangleMesh& a, const dbss::Trian
   return {at(0.99), at(0.999)};
 }
 
+using Segments = std::vector<std::array<double, 6>>;
+
+Segments tagged_segments(const dbss::TriangleMesh& m, const dbss::format::Creases& c) {
+  Segments out;
+  if (c.empty()) return out;
+  auto t = dbss::build_topology(static_cast<uint32_t>(m.vertex_count()), m.triangles).value();
+  for (uint32_t e = 0; e < t.edge_count(); ++e) {
+    if (!c.edge[e]) continue;
+    const uint32_t h = t.edge_half[e], u = t.triangles[h], w = t.triangles[dbss::next_half(h)];
+    out.push_back({m.positions[3 * u], m.positions[3 * u + 1], m.positions[3 * u + 2], m.positions[3 * w], m.positions[3 * w + 1],
+                   m.positions[3 * w + 2]});
+  }
+  return out;
+}
+
+double to_segment(const double p[3], const std::array<double, 6>& s) {
+  double d[3], q[3], dd = 0, t = 0;
+  for (int k = 0; k < 3; ++k) d[k] = s[3 + k] - s[k], q[k] = p[k] - s[k], dd += d[k] * d[k], t += d[k] * q[k];
+  t = dd > 0 ? std::clamp(t / dd, 0.0, 1.0) : 0.0;
+  double r = 0;
+  for (int k = 0; k < 3; ++k) r += (q[k] - t * d[k]) * (q[k] - t * d[k]);
+  return std::sqrt(r);
+}
+
+double to_segments(const double p[3], const Segments& s) {
+  double best = INFINITY;
+  for (const auto& g : s) best = std::min(best, to_segment(p, g));
+  return best;
+}
+
+// Tagged edges near a true feature (true), not (false), and the true
+// features' length not near any tag (missed), within `tol`.
+struct TagCheck {
+  size_t truly = 0, falsely = 0;
+  double missed = 0, total = 0;
+};
+TagCheck check_tags(const Segments& tags, const Segments& truth, double tol) {
+  TagCheck c;
+  for (const auto& g : tags) {
+    bool near = !truth.empty();
+    for (int k = 0; k < 3 && near; ++k) {
+      double p[3];
+      for (int i = 0; i < 3; ++i) p[i] = g[i] + 0.5 * k * (g[3 + i] - g[i]);
+      near = to_segments(p, truth) <= tol;
+    }
+    near ? ++c.truly : ++c.falsely;
+  }
+  for (const auto& g : truth) {
+    const double len = std::sqrt(std::pow(g[3] - g[0], 2) + std::pow(g[4] - g[1], 2) + std::pow(g[5] - g[2], 2));
+    const int n = std::max(1, static_cast<int>(std::ceil(len / (0.5 * tol))));
+    for (int j = 0; j < n; ++j) {
+      double p[3];
+      for (int i = 0; i < 3; ++i) p[i] = g[i] + (j + 0.5) / n * (g[3 + i] - g[i]);
+      if (to_segments(p, tags) > tol) c.missed += len / n;
+    }
+    c.total += len;
+  }
+  return c;
+}
+
 struct Run {
   std::vector<size_t> bytes;
   std::vector<double> mean, hausdorff, p99, p999;
@@ -110,6 +175,7 @@ struct Run {
   size_t tag_bytes = 0;
   std::vector<dbss::LevelStats> levels;
   std::string choice;
+  TagCheck tags;
 };
 
 }  // namespace
@@ -117,6 +183,7 @@ struct Run {
 int main(int argc, char** argv) {
   size_t points = 40000, samples = 200000;
   uint32_t levels = 4, seed = 1;
+  double noise = 0;
   double angle = 30, flat_fan = dbss::CreaseOptions{}.flat_fan_degrees;
   std::vector<std::string> shapes;
   bool skip_absent = false, shaping = true, split = false, against_no_collapse = false, against_no_wedge = false, against_no_relax = false, against_beside = false, against_no_gate = false, against_no_vflips = false, against_no_flat_corners = false, fixed_control = false, collapse = false, on_only = false;
@@ -141,6 +208,7 @@ int main(int argc, char** argv) {
     else if (a == "--flat-fan" && i + 1 < argc) flat_fan = std::atof(argv[++i]);
     else if (a == "--collapse") collapse = true;
     else if (a == "--on-only") on_only = true;
+    else if (a == "--noise" && i + 1 < argc) noise = std::atof(argv[++i]);
     else if (!a.empty() && a[0] == '-') return std::fprintf(stderr, "crease_bench: unknown option %s\n", a.c_str()), 1;
     else shapes.push_back(a);
   }
@@ -170,9 +238,15 @@ int main(int argc, char** argv) {
     const double diag = diagonal(truth);
     const std::string shape = std::filesystem::path(name).stem().string();
     const double true_length = crease_length(truth, dbss::test::creases_from_dihedral(truth, angle));
-    const std::vector<double> p = dbss::sample_surface(truth, points, seed);
+    std::vector<double> p = dbss::sample_surface(truth, points, seed);
+    if (noise > 0) {
+      std::mt19937_64 rng(seed * 7919u + 17u);
+      std::normal_distribution<double> gauss(0.0, noise * diag);
+      for (double& x : p) x += gauss(rng);
+    }
     dbss::PointCloud pc;
     pc.xyz.assign(p.begin(), p.end());
+    const Segments true_features = tagged_segments(truth, dbss::test::creases_from_dihedral(truth, angle));
     Run runs[2];
     for (int on = on_only ? 1 : 0; on < 2; ++on) {
       dbss::EncodeOptions eo;
@@ -201,6 +275,8 @@ int main(int argc, char** argv) {
         flag("relax_after", eo.creases.relax_after_flips), flag("untag_flat", eo.creases.untag_flat);
         flag("gap", eo.creases.gap_snaps), flag("fanfit", eo.creases.flat_fan_fit), flag("fancheck", eo.creases.flat_fan_check);
       }
+      // CREASE_BENCH_SMOOTH=R: CreaseOptions::smooth_ratio (0: without the smooth test, as before it).
+      if (const char* r = std::getenv("CREASE_BENCH_SMOOTH")) eo.creases.smooth_ratio = std::atof(r);
       eo.control.shape.enabled = shaping;
       eo.creases.split = split;
       eo.choose_control = !fixed_control;
@@ -209,6 +285,7 @@ int main(int argc, char** argv) {
       const dbss::Encoding& enc = e.value();
       runs[on].stats = enc.creases;
       runs[on].length = crease_length(enc.control, enc.contents.creases);
+      runs[on].tags = check_tags(tagged_segments(enc.control, enc.contents.creases), true_features, 0.005 * diag);
       runs[on].levels = enc.levels.stats;
       runs[on].choice = enc.control_choice;
       for (const auto& t : enc.toc)
@@ -274,6 +351,8 @@ int main(int argc, char** argv) {
                 "diagonal); feature length found %.3f, true %.3f (diagonals); tags %zu bytes\n\n",
                 r.stats.creases, r.stats.edges_tested, r.stats.gaps_closed, r.stats.corners, r.stats.darts, r.stats.snapped, r.stats.max_snap / diag,
                 r.length / diag, true_length / diag, r.tag_bytes);
+    std::printf("tags against the true features: %zu true, %zu false edges, missed %.3f of %.3f (diagonals), %zu smooth-rejected\n\n",
+                r.tags.truly, r.tags.falsely, r.tags.missed / diag, r.tags.total / diag, r.stats.smooth_rejected);
     std::printf("sampler, levels 1..%u (on): clamped", levels);
     for (const auto& ls : r.levels) std::printf(" %zu", ls.clamped);
     std::printf("; nearest-point fallback");

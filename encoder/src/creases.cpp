@@ -3,7 +3,11 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <unordered_set>
+
+#include <Eigen/Dense>
 
 #include "dbss/decoder/level_refiner.h"
 #include "dbss/decoder/topology.h"
@@ -42,6 +46,43 @@ bool flat_pair(const V3& u, const V3& w, const V3& c, const V3& d) {
 
 // RMS distance of the points from their plane.
 double rms(const PointPlane& p) { return std::sqrt(std::max(0.0, p.variance[0])); }
+
+// RMS distance of the points `near` from the quadric height field
+// h = c0 + c1 x + c2 y + c3 x^2 + c4 xy + c5 y^2 that fits them best, over
+// the plane through `origin` with unit axes x, y and normal z; negative when
+// the fit is ill-posed.  Six coefficients, as many as two planes have: the
+// smooth surface's best against the crease's best at equal freedom.
+double quadric_rms(const PointCloud& pc, const std::vector<uint32_t>& near, const V3& origin, const V3& x, const V3& y, const V3& z) {
+  if (near.size() < 12) return -1;
+  Eigen::Matrix<double, 6, 6> ata = Eigen::Matrix<double, 6, 6>::Zero();
+  Eigen::Matrix<double, 6, 1> atb = Eigen::Matrix<double, 6, 1>::Zero();
+  double scale2 = 0;
+  for (uint32_t i : near) {
+    const V3 d = sub(at(pc.xyz, i), origin);
+    scale2 = std::max(scale2, dot(d, d));
+  }
+  const double s = scale2 > 0 ? 1 / std::sqrt(scale2) : 1;  // coordinates in units of the neighbourhood
+  const auto row = [&](uint32_t i, Eigen::Matrix<double, 6, 1>& r) {
+    const V3 d = sub(at(pc.xyz, i), origin);
+    const double u = dot(d, x) * s, v = dot(d, y) * s;
+    r << 1, u, v, u * u, u * v, v * v;
+    return dot(d, z) * s;
+  };
+  Eigen::Matrix<double, 6, 1> r;
+  for (uint32_t i : near) {
+    const double h = row(i, r);
+    ata += r * r.transpose(), atb += h * r;
+  }
+  const Eigen::LDLT<Eigen::Matrix<double, 6, 6>> ldlt(ata);
+  if (ldlt.info() != Eigen::Success || !(ldlt.rcond() > 1e-12)) return -1;
+  const Eigen::Matrix<double, 6, 1> c = ldlt.solve(atb);
+  double sum = 0;
+  for (uint32_t i : near) {
+    const double h = row(i, r);
+    sum += (h - c.dot(r)) * (h - c.dot(r));
+  }
+  return std::sqrt(sum / static_cast<double>(near.size())) / s;
+}
 
 // Each edge's level-1 stencil point's distance from the edge's midpoint,
 // over the edge's length, with the tags `tags` (by the decoder's own
@@ -189,6 +230,10 @@ format::Creases find_creases(TriangleMesh& mesh, const PointIndex& points, const
   }
   // Edges along the features first: the test below only finds crease
   // edges the control mesh has.
+  // A mesh in which no tag is found is given back as it came: the file is
+  // then the one creases off writes, byte for byte.
+  const std::vector<float> unaligned = mesh.positions;
+  const std::vector<uint32_t> unaligned_triangles = mesh.triangles;
   AlignStats aligned;
   std::vector<std::array<uint32_t, 2>> chains;
   std::vector<uint32_t> corners;
@@ -208,41 +253,42 @@ format::Creases find_creases(TriangleMesh& mesh, const PointIndex& points, const
   for (uint32_t e = 0; e < t.edge_count(); ++e) {
     const uint32_t h = t.edge_half[e], tw = t.twin[h];
     if (tw == kNoHalfEdge) continue;
-    {
-      // An edge of a chain along a feature line: its ends are on the line already.
-      const uint32_t a = std::min(t.triangles[h], t.triangles[next_half(h)]), b = std::max(t.triangles[h], t.triangles[next_half(h)]);
-      if (std::binary_search(chains.begin(), chains.end(), std::array<uint32_t, 2>{a, b})) {
-        crease[e] = 1;
-        ++st.chain_edges;
-        continue;
-      }
-    }
+    // An edge of a chain along a feature line: its ends are on the line
+    // already; it keeps its tag unless the smooth test below finds a single
+    // smooth sheet through its points.
+    const uint32_t ca = std::min(t.triangles[h], t.triangles[next_half(h)]), cb = std::max(t.triangles[h], t.triangles[next_half(h)]);
+    const bool chain = std::binary_search(chains.begin(), chains.end(), std::array<uint32_t, 2>{ca, cb});
+    const auto keep_chain = [&] {
+      if (!chain) return;
+      crease[e] = 1, ++st.chain_edges;
+      if (std::getenv("DBSS_CREASE_TRACE")) std::fprintf(stderr, "crease-trace chain-unfit\n");
+    };
     const uint32_t u = t.triangles[h], w = t.triangles[next_half(h)];
     const V3 pu = at(mesh.positions, u), pw = at(mesh.positions, w);
     const V3 pc1 = at(mesh.positions, t.triangles[prev_half(h)]), pd = at(mesh.positions, t.triangles[prev_half(tw)]);
     const double len = norm(sub(pw, pu));
-    if (!(len > 0)) continue;
+    if (!(len > 0)) { keep_chain(); continue; }
     // Its two triangles in one plane: the control mesh has no fold here,
     // so the feature is beside this edge, not along it (the points within
     // 0.6 of a short edge next to a line see both sides).  Tagged, it
     // would be a spur with a dart at its end (CreaseOptions::untag_flat).
-    if (o.untag_flat && flat_pair(pu, pw, pc1, pd)) continue;
+    if (!chain && o.untag_flat && flat_pair(pu, pw, pc1, pd)) continue;
     const V3 dir = {(pw[0] - pu[0]) / len, (pw[1] - pu[1]) / len, (pw[2] - pu[2]) / len};
     const double radius = 0.6 * len;
     const float mid[3] = {float(0.5 * (pu[0] + pw[0])), float(0.5 * (pu[1] + pw[1])), float(0.5 * (pu[2] + pw[2]))};
     points.within(mid, float(radius), near);
-    if (near.size() < 2 * o.min_side_points) continue;
+    if (near.size() < 2 * o.min_side_points) { keep_chain(); continue; }
     // First split: toward the third corner of either triangle.
     V3 t1 = across(sub(pc1, pu), dir), t2 = across(sub(pd, pu), dir);
     const double l1 = norm(t1), l2 = norm(t2);
-    if (!(l1 > 0) || !(l2 > 0)) continue;
+    if (!(l1 > 0) || !(l2 > 0)) { keep_chain(); continue; }
     for (int k = 0; k < 3; ++k) t1[k] /= l1, t2[k] /= l2;
     side[0].clear(), side[1].clear();
     for (uint32_t i : near) {
       const V3 q = across(sub(at(pc.xyz, i), pu), dir);
       side[dot(q, t1) >= dot(q, t2) ? 0 : 1].push_back(i);
     }
-    if (side[0].size() < o.min_side_points || side[1].size() < o.min_side_points) continue;
+    if (side[0].size() < o.min_side_points || side[1].size() < o.min_side_points) { keep_chain(); continue; }
     // Then twice: each point to the plane it is nearer, planes refitted.
     PointPlane fit[2];
     bool ok = true;
@@ -259,8 +305,46 @@ format::Creases find_creases(TriangleMesh& mesh, const PointIndex& points, const
       }
       ok = side[0].size() >= o.min_side_points && side[1].size() >= o.min_side_points;
     }
-    if (!ok) continue;
-    ++st.edges_tested;
+    if (!ok) { keep_chain(); continue; }
+    if (!chain) ++st.edges_tested;
+    // A smooth surface, not a crease: one quadric height field (over the
+    // plane of the edge's two control triangles) fits the points about as
+    // well as the two planes do (CreaseOptions::smooth_ratio).  On a curved
+    // sheet the planes' misfit is its curvature, which the quadric has; on
+    // noise both fit alike; across a crease the quadric cannot bend sharply.
+    bool smooth = false;
+    double ratio = 0, trace_q = 0, trace_p = 0;
+    const auto judge = [&] {  // only for an edge the other tests would tag (the fit costs)
+      const V3 na = cross(sub(pw, pu), sub(pc1, pu)), nb = cross(sub(pu, pw), sub(pd, pw));
+      const double la = norm(na), lb = norm(nb);
+      V3 z = {0, 0, 0};
+      if (la > 0 && lb > 0) z = {na[0] / la + nb[0] / lb, na[1] / la + nb[1] / lb, na[2] / la + nb[2] / lb};
+      z = across(z, dir);
+      const double lz = norm(z);
+      if (lz > 1e-6) {
+        for (double& k : z) k /= lz;
+        const V3 y = cross(z, dir);
+        const V3 origin = {0.5 * (pu[0] + pw[0]), 0.5 * (pu[1] + pw[1]), 0.5 * (pu[2] + pw[2])};
+        const double q = quadric_rms(pc, near, origin, dir, y, z);
+        const double n0 = static_cast<double>(side[0].size()), n1 = static_cast<double>(side[1].size());
+        const double two = std::sqrt(std::max(0.0, (n0 * fit[0].variance[0] + n1 * fit[1].variance[0]) / (n0 + n1)));
+        if (q >= 0) {
+          ratio = q / std::max(two, 1e-9 * radius);
+          smooth = o.smooth_ratio > 0 && ratio < o.smooth_ratio;
+        }
+        trace_q = q / radius, trace_p = two / radius;
+      }
+      if (std::getenv("DBSS_CREASE_TRACE"))
+        std::fprintf(stderr, "crease-trace %s angle %.1f ratio %.3f quad %.4f planes %.4f (of radius) at %.4f %.4f %.4f\n", chain ? "chain" : "edge",
+                     std::acos(std::min(1.0, std::abs(dot(V3(fit[0].normal), V3(fit[1].normal))))) * 180 / 3.14159265358979323846, ratio,
+                     trace_q, trace_p, 0.5 * (pu[0] + pw[0]), 0.5 * (pu[1] + pw[1]), 0.5 * (pu[2] + pw[2]));
+    };
+    if (chain) {
+      judge();
+      if (smooth) ++st.smooth_rejected;
+      else crease[e] = 1, ++st.chain_edges;
+      continue;
+    }
     const double c = std::abs(dot(V3(fit[0].normal), V3(fit[1].normal)));
     if (c > min_cos) continue;  // the planes meet at less than the angle
     if (rms(fit[0]) > o.flatness * radius || rms(fit[1]) > o.flatness * radius) continue;  // a bend, not a crease
@@ -276,6 +360,11 @@ format::Creases find_creases(TriangleMesh& mesh, const PointIndex& points, const
       for (int s = 0; s < 2; ++s)
         along = along && std::abs(dot(sub(end, V3(fit[s].point)), V3(fit[s].normal))) <= o.reach * len;
     if (!along) continue;
+    judge();
+    if (smooth) {
+      ++st.smooth_rejected;
+      continue;
+    }
     crease[e] = 1;
     for (int s = 0; s < 2; ++s) {
       const Plane p{V3(fit[s].point), V3(fit[s].normal)};
@@ -405,6 +494,7 @@ format::Creases find_creases(TriangleMesh& mesh, const PointIndex& points, const
     if (v < t.vertex_count && count[v] >= 1) at_corner[v] = 1;
   for (uint32_t v = 0; v < t.vertex_count; ++v) st.darts += count[v] == 1 && !at_corner[v];
   if (st.creases == 0) {
+    mesh.positions = unaligned, mesh.triangles = unaligned_triangles;
     if (stats) *stats = st;
     return out;
   }

@@ -28,6 +28,18 @@ struct CreaseOptions {
   // bend of the same angle does not (its halves deviate by about angle/16).
   double flatness = 0.02;
   size_t min_side_points = 8;  // per side, else the edge is not a crease
+  // A crease only where the best single quadric height field through the
+  // edge's points (six coefficients, over the plane of its two control
+  // triangles) fits them at least this many times worse, RMS, than its two
+  // sides' planes (six coefficients too); the chains the alignment tags are
+  // held to it as well.  A curved smooth sheet (a torus, a scan's ear) can
+  // pass for two planes at any angle; a quadric follows it.  <= 0: no test.
+  // 8: measured (bench/crease_bench.md, twelfth session; 40,000 points,
+  // seeds 1-3), the smallest of 2, 3, 4, 5, 6, 8 under which bunny00,
+  // armadillo, knot1 and the torus keep no candidate edge (bunny00 at 2:
+  // 15-16 of 61-83; at 5: 0-3); on the cube, roof and cylinder 90-100% of
+  // the candidates pass it, on the fandisk and anchor 80-86%.
+  double smooth_ratio = 8;
   // The feature runs along the edge: the planes' line within acos(parallel)
   // of it, and each end within reach * its length of both planes.
   double parallel = 0.94;  // cos 20 degrees
@@ -133,6 +145,7 @@ struct CreaseStats {
   size_t darts = 0;        // vertices where a crease ends (one crease edge)
   size_t gaps_closed = 0;  // edges tagged because they join two crease ends in line
   size_t spurs = 0;        // tags taken back: a dart's edge off a chain
+  size_t smooth_rejected = 0;  // edges (chains' too) a single quadric fits nearly as well as two planes (smooth_ratio)
   size_t snapped = 0;      // vertices moved onto a feature line or corner
   double max_snap = 0;     // largest move, model units
   // The control mesh's alignment to the feature lines before the test
