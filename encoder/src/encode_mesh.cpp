@@ -106,8 +106,10 @@ Result<MeshEncoding> encode_mesh(const TriangleMesh& mesh, const EncodeOptions& 
   t = Clock::now();
   std::vector<uint8_t> rim;
   std::vector<double> rim_tangent;  // per edge, 3 each: the unit direction of a boundary edge
+  bool bdry = false;  // this level may carry BDRY values (MeshEncodeOptions::boundary_levels)
   LevelSampler sampler;
-  sampler.begin_level = [&](uint32_t, std::span<const float> positions, std::span<const uint32_t> triangles) {
+  sampler.begin_level = [&](uint32_t level, std::span<const float> positions, std::span<const uint32_t> triangles) {
+    bdry = mo.boundary_values && level < 32 && (mo.boundary_levels >> level & 1u);
     rim.clear();
     rim_tangent.clear();
     if (!surface.has_boundary()) return;
@@ -135,7 +137,7 @@ Result<MeshEncoding> encode_mesh(const TriangleMesh& mesh, const EncodeOptions& 
   // (Closed input: unchanged.)
   sampler.sample = [&](uint32_t odd, const double p[3], const double n[3], double half_length) {
     const bool on_rim = odd < rim.size() && rim[odd];
-    const double* tangent = on_rim && mo.boundary_values ? &rim_tangent[3 * size_t{odd}] : nullptr;
+    const double* tangent = on_rim && bdry ? &rim_tangent[3 * size_t{odd}] : nullptr;
     return surface.sample(p, n, half_length, on_rim, tangent);
   };
   // Format 1.3: the boundary odd vertices onto the input's boundary curve,
@@ -143,7 +145,7 @@ Result<MeshEncoding> encode_mesh(const TriangleMesh& mesh, const EncodeOptions& 
   // no boundary edge, so its file is unchanged.
   if (mo.boundary_values && surface.has_boundary())
     sampler.boundary = [&](uint32_t, const double m[3], const double b[3], const double n[3], double half_length) {
-      return surface.boundary_offset(m, b, n, half_length);
+      return bdry ? surface.boundary_offset(m, b, n, half_length) : 0.0;  // 0 everywhere: no BDRY chunk
     };
   // With a level past the input's density, the levels up to it round
   // finer than the error target's step (mesh_level_step).
