@@ -3,7 +3,7 @@
 // vertices sit on the boundary loops), per level the LEVL and BDRY chunks
 // (frame included, as the file holds them), and the share of each level's
 // error that lies next to the boundary.
-//   bdry_probe [--levels L] [--error E] [--cut-holes N] [--hole-radius R] [--bdry-levels MASK] MESH
+//   bdry_probe [--levels L] [--error E] [--cut-holes N] [--hole-radius R] [--bdry-levels MASK] [--bdry-always] MESH
 // The error is split both ways.  Level to input: the level's triangles
 // (area-weighted distance of a centroid to the input) that touch a
 // boundary vertex of the level against the rest.  Input to level: the
@@ -52,6 +52,7 @@ int main(int argc, char** argv) {
   uint32_t levels = 4, holes = 0;
   double error = 2e-4, radius = 0.04;
   uint32_t mask = ~0u;
+  bool always = false;
   std::string path;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -59,6 +60,7 @@ int main(int argc, char** argv) {
     else if (a == "--error" && i + 1 < argc) error = std::atof(argv[++i]);
     else if (a == "--cut-holes" && i + 1 < argc) holes = static_cast<uint32_t>(std::atoi(argv[++i]));
     else if (a == "--hole-radius" && i + 1 < argc) radius = std::atof(argv[++i]);
+    else if (a == "--bdry-always") always = true;
     else if (a == "--bdry-levels" && i + 1 < argc) mask = static_cast<uint32_t>(std::strtoul(argv[++i], nullptr, 0));
     else path = a;
   }
@@ -74,6 +76,7 @@ int main(int argc, char** argv) {
   o.threads = 2;
   MeshEncodeOptions mo;
   mo.boundary_levels = mask;
+  mo.boundary_when_pays = !always;
   auto e = encode_mesh(read.value(), o, mo);
   if (!e.ok()) {
     std::fprintf(stderr, "bdry_probe: %s\n", e.status().to_string().c_str());
@@ -125,8 +128,8 @@ int main(int argc, char** argv) {
   MeshDistanceOptions dopt;
   dopt.samples = 200000;
   dopt.threads = 2;
-  std::printf("\n| level | LEVL B | BDRY B | prefix B | boundary odd (moved) | error | level to input | rim share | input to level | rim share |\n"
-              "|---|---|---|---|---|---|---|---|---|---|\n");
+  std::printf("\n| level | LEVL B | BDRY B | prefix B | boundary odd (moved) | BDRY worth: gain / cost | error | level to input | rim share | input to level | rim share |\n"
+              "|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (uint32_t l = 0; l <= en.level_count; ++l) {
     const uint64_t prefix = prefix_bytes(en, l);
     const auto& P = en.levels.positions[l];
@@ -170,9 +173,10 @@ int main(int argc, char** argv) {
       add_triangle(a, &Q[3 * size_t{U[3 * f + 1]}], &Q[3 * size_t{U[3 * f + 2]}], level_tree, near, i2l);
     }
     const LevelStats* st = l ? &en.levels.stats[l - 1] : nullptr;
-    std::printf("| %u | %llu | %llu | %llu | %zu (%zu) | %.2e | %.2e | %.0f%% (area %.1f%%) | %.2e | %.0f%% (area %.1f%%) |\n", l,
+    std::printf("| %u | %llu | %llu | %llu | %zu (%zu) | %.3g / %.3g%s | %.2e | %.2e | %.0f%% (area %.1f%%) | %.2e | %.0f%% (area %.1f%%) |\n", l,
                 static_cast<unsigned long long>(l ? levl[l] : 0), static_cast<unsigned long long>(bdry[l]),
                 static_cast<unsigned long long>(prefix), st ? st->boundary_odd : 0, st ? st->boundary_moved : 0,
+                st ? st->boundary_worth.gain : 0.0, st ? st->boundary_worth.cost : 0.0, st && st->boundary_dropped ? " (dropped)" : "",
                 d.mean() / diag, l2i.mean() / diag, 100 * l2i.share(), 100 * l2i.rim_area_share(), i2l.mean() / diag,
                 100 * i2l.share(), 100 * i2l.rim_area_share());
   }

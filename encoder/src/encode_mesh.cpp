@@ -106,10 +106,12 @@ Result<MeshEncoding> encode_mesh(const TriangleMesh& mesh, const EncodeOptions& 
   t = Clock::now();
   std::vector<uint8_t> rim;
   std::vector<double> rim_tangent;  // per edge, 3 each: the unit direction of a boundary edge
-  bool bdry = false;  // this level may carry BDRY values (MeshEncodeOptions::boundary_levels)
+  bool bdry_allowed = false;  // this level may carry BDRY values (MeshEncodeOptions::boundary_levels)
+  bool bdry = false;          // ... and the level loop aims at them (LevelSampler::boundary_mode)
   LevelSampler sampler;
   sampler.begin_level = [&](uint32_t level, std::span<const float> positions, std::span<const uint32_t> triangles) {
-    bdry = mo.boundary_values && level < 32 && (mo.boundary_levels >> level & 1u);
+    bdry_allowed = mo.boundary_values && level < 32 && (mo.boundary_levels >> level & 1u);
+    bdry = bdry_allowed;
     rim.clear();
     rim_tangent.clear();
     if (!surface.has_boundary()) return;
@@ -147,6 +149,7 @@ Result<MeshEncoding> encode_mesh(const TriangleMesh& mesh, const EncodeOptions& 
     sampler.boundary = [&](uint32_t, const double m[3], const double b[3], const double n[3], double half_length) {
       return bdry ? surface.boundary_offset(m, b, n, half_length) : 0.0;  // 0 everywhere: no BDRY chunk
     };
+  sampler.boundary_mode = [&](bool values) { bdry = values && bdry_allowed; };
   // With a level past the input's density, the levels up to it round
   // finer than the error target's step (mesh_level_step).
   const std::vector<uint64_t> vertices = level_vertex_counts(
@@ -164,6 +167,7 @@ Result<MeshEncoding> encode_mesh(const TriangleMesh& mesh, const EncodeOptions& 
   lo.threads = std::max(1u, o.threads);
   lo.rdo_lambda = mo.rdo_lambda;
   lo.rdo_first_level = mo.rdo_first_level;
+  lo.boundary_when_pays = mo.boundary_when_pays;
   if (o.on_progress)
     lo.on_level = [&](uint32_t l) { o.on_progress("casting level " + std::to_string(l) + " of " + std::to_string(e.level_count)); };
   auto encoded = encode_levels(e.control, sampler, lo);
