@@ -446,7 +446,7 @@ TEST_CASE("mesh input: BDRY chunks are written from the bytes chosen, not compre
 // A level without it is exactly the level the boundary rule alone makes:
 // the file is byte for byte the one written with BDRY switched off at
 // those levels, and decodes as encoded.
-TEST_CASE("mesh input: BDRY only where it pays; a level without it is the boundary rule alone", "[mesh_input]") {
+TEST_CASE("mesh input: BDRY only where it pays, and a level without it is the boundary rule alone", "[mesh_input]") {
   const TriangleMesh input = sphere_with_holes(40, 80);
   EncodeOptions o;
   o.levels = 3;
