@@ -5,7 +5,7 @@
 // bounding-box diagonal (measure/mesh_distance).  Also: dbss's QEM against
 // meshoptimizer's simplifier for the control mesh.
 //
-//   lod_bench [--levels N] [--control-faces F] [--control-bits B] [--cut-holes H] [--hole-radius R] [--cut-only] [--loop-faces N] [--hole-tolerance T] [--hole-faces-per-vertex C] [--errors E1,E2,..] [--samples N] [--detail] [--quick] [--no-search] [--dense-step-ratio R] [--no-boundary-values] [--fixed-control] [--floor-ratio R] [--rdo LAMBDA] [--rdo-from LEVEL] [--skip-absent] MESH...
+//   lod_bench [--levels N] [--control-faces F] [--control-bits B] [--cut-holes H] [--hole-radius R] [--cut-only] [--loop-faces N] [--hole-tolerance T] [--hole-faces-per-vertex C] [--errors E1,E2,..] [--samples N] [--detail] [--quick] [--no-search] [--dense-step-ratio R] [--no-boundary-values] [--fixed-control] [--floor-ratio R] [--bdry-levels MASK] [--bdry-always] [--rdo LAMBDA] [--rdo-from LEVEL] [--skip-absent] MESH...
 //
 // With no MESH: the libcgal-demo meshes under test-data/ (closed, with
 // holes, several components); --cut-holes H adds each mesh again with H
@@ -62,6 +62,8 @@ struct Args {
   bool fixed_control = false;   // --fixed-control: the default control mesh, no size choice (EncodeOptions::choose_control)
   double floor_ratio = kMeshFloorRatio;  // --floor-ratio R: the size choice's trigger (MeshEncodeOptions::floor_ratio)
   bool boundary_values = true;  // --no-boundary-values: normal displacements only (format 1.2, no BDRY)
+  uint32_t boundary_levels = ~0u;  // --bdry-levels MASK: the levels that may carry BDRY (bit l: level l)
+  bool boundary_when_pays = true;  // --bdry-always: BDRY wherever a value is non-zero (the first 1.3 encoder)
   uint32_t cut_holes = 0;  // also run each closed mesh with this many holes cut in it
   double hole_radius = 0.04;  // --hole-radius R: the cut holes' radius over the diagonal
   bool cut_only = false;      // --cut-only: with --cut-holes, only the meshes with holes cut
@@ -77,6 +79,8 @@ MeshEncodeOptions mesh_options(const Args& a) {
   MeshEncodeOptions m;
   m.dense_step_ratio = a.dense_step_ratio;
   m.boundary_values = a.boundary_values;
+  m.boundary_levels = a.boundary_levels;
+  m.boundary_when_pays = a.boundary_when_pays;
   m.rdo_lambda = a.rdo_lambda;
   m.rdo_first_level = a.rdo_first_level;
   m.floor_ratio = a.floor_ratio;
@@ -507,6 +511,8 @@ int main(int argc, char** argv) {
     else if (a == "--no-boundary-values") args.boundary_values = false;
     else if (a == "--fixed-control") args.fixed_control = true;
     else if (a == "--floor-ratio" && i + 1 < argc) args.floor_ratio = std::atof(argv[++i]);
+    else if (a == "--bdry-always") args.boundary_when_pays = false;
+    else if (a == "--bdry-levels" && i + 1 < argc) args.boundary_levels = static_cast<uint32_t>(std::strtoul(argv[++i], nullptr, 0));
     else if (a == "--rdo" && i + 1 < argc) args.rdo_lambda = std::atof(argv[++i]);
     else if (a == "--rdo-from" && i + 1 < argc) args.rdo_first_level = static_cast<uint32_t>(std::atoi(argv[++i]));
     else if (a == "--dense-step-ratio" && i + 1 < argc) args.dense_step_ratio = std::atof(argv[++i]);
@@ -520,7 +526,7 @@ int main(int argc, char** argv) {
       }
     } else if (a == "--skip-absent") args.skip_absent = true;
     else if (!a.empty() && a[0] == '-') {
-      std::fprintf(stderr, "usage: lod_bench [--levels N] [--control-faces F] [--control-bits B] [--cut-holes H] [--hole-radius R] [--cut-only] [--loop-faces N] [--hole-tolerance T] [--hole-faces-per-vertex C] [--errors E1,E2] [--samples N] [--detail] [--quick] [--no-search] [--dense-step-ratio R] [--no-boundary-values] [--fixed-control] [--floor-ratio R] [--rdo LAMBDA] [--rdo-from LEVEL] [--skip-absent] MESH...\n");
+      std::fprintf(stderr, "usage: lod_bench [--levels N] [--control-faces F] [--control-bits B] [--cut-holes H] [--hole-radius R] [--cut-only] [--loop-faces N] [--hole-tolerance T] [--hole-faces-per-vertex C] [--errors E1,E2] [--samples N] [--detail] [--quick] [--no-search] [--dense-step-ratio R] [--no-boundary-values] [--fixed-control] [--floor-ratio R] [--bdry-levels MASK] [--bdry-always] [--rdo LAMBDA] [--rdo-from LEVEL] [--skip-absent] MESH...\n");
       return 1;
     } else args.meshes.push_back(a);
   }

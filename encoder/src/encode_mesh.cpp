@@ -91,8 +91,12 @@ Status encode_over_mesh_control(const TriangleMesh& in, const MeshInfo& info, co
   t = Clock::now();
   std::vector<uint8_t> rim;
   std::vector<double> rim_tangent;  // per edge, 3 each: the unit direction of a boundary edge
+  bool bdry_allowed = false;  // this level may carry BDRY values (MeshEncodeOptions::boundary_levels)
+  bool bdry = false;          // ... and the level loop aims at them (LevelSampler::boundary_mode)
   LevelSampler sampler;
-  sampler.begin_level = [&](uint32_t, std::span<const float> positions, std::span<const uint32_t> triangles) {
+  sampler.begin_level = [&](uint32_t level, std::span<const float> positions, std::span<const uint32_t> triangles) {
+    bdry_allowed = mo.boundary_values && level < 32 && (mo.boundary_levels >> level & 1u);
+    bdry = bdry_allowed;
     rim.clear();
     rim_tangent.clear();
     if (!surface.has_boundary()) return;
@@ -120,7 +124,7 @@ Status encode_over_mesh_control(const TriangleMesh& in, const MeshInfo& info, co
   // (Closed input: unchanged.)
   sampler.sample = [&](uint32_t odd, const double p[3], const double n[3], double half_length) {
     const bool on_rim = odd < rim.size() && rim[odd];
-    const double* tangent = on_rim && mo.boundary_values ? &rim_tangent[3 * size_t{odd}] : nullptr;
+    const double* tangent = on_rim && bdry ? &rim_tangent[3 * size_t{odd}] : nullptr;
     return surface.sample(p, n, half_length, on_rim, tangent);
   };
   // Format 1.3: the boundary odd vertices onto the input's boundary curve,
@@ -128,8 +132,9 @@ Status encode_over_mesh_control(const TriangleMesh& in, const MeshInfo& info, co
   // no boundary edge, so its file is unchanged.
   if (mo.boundary_values && surface.has_boundary())
     sampler.boundary = [&](uint32_t, const double m[3], const double b[3], const double n[3], double half_length) {
-      return surface.boundary_offset(m, b, n, half_length);
+      return bdry ? surface.boundary_offset(m, b, n, half_length) : 0.0;  // 0 everywhere: no BDRY chunk
     };
+  sampler.boundary_mode = [&](bool values) { bdry = values && bdry_allowed; };
   // With a level past the input's density, the levels up to it round
   // finer than the error target's step (mesh_level_step).
   const std::vector<uint64_t> vertices = level_vertex_counts(
@@ -147,6 +152,7 @@ Status encode_over_mesh_control(const TriangleMesh& in, const MeshInfo& info, co
   lo.threads = std::max(1u, o.threads);
   lo.rdo_lambda = mo.rdo_lambda;
   lo.rdo_first_level = mo.rdo_first_level;
+  lo.boundary_when_pays = mo.boundary_when_pays;
   if (o.on_progress)
     lo.on_level = [&](uint32_t l) { o.on_progress("casting level " + std::to_string(l) + " of " + std::to_string(e.level_count)); };
   auto encoded = encode_levels(e.control, sampler, lo);

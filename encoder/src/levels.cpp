@@ -74,6 +74,43 @@ Result<std::vector<uint8_t>> choose_coding(format::Level& level, int zstd_level)
   return best;
 }
 
+namespace {
+
+// An INDX entry (spec/dbss-format.md: INDX is 28 + 16 x N bytes).
+constexpr size_t kTocEntryBytes = 16;
+
+// The smallest BDRY chunk data for level.boundary (its coding set to it;
+// the older codings on a tie, as choose_coding).
+Result<std::vector<uint8_t>> smallest_boundary_chunk(format::Level& level, int zstd_level) {
+  std::vector<uint8_t> best;
+  format::DisplacementCoding best_coding = format::DisplacementCoding::varint;
+  for (auto coding : {format::DisplacementCoding::byte_planes, format::DisplacementCoding::varint,
+                      format::DisplacementCoding::context}) {
+    level.boundary.coding = coding;
+    auto data = format::encode_boundary(level, zstd_level);
+    if (!data.ok()) return data.status();
+    if (best.empty() || data.value().size() < best.size()) best = std::move(data).value(), best_coding = coding;
+  }
+  level.boundary.coding = best_coding;
+  return best;
+}
+
+}  // namespace
+
+BoundaryWorth boundary_worth(std::span<const int32_t> bq, std::span<const double> edge_length, float step, size_t chunk_bytes,
+                             double level_area, size_t level_vertices, uint32_t prefixes) {
+  BoundaryWorth w;
+  for (size_t k = 0; k < bq.size() && k < edge_length.size(); ++k) {
+    const double d = static_cast<double>(bq[k]) * step;
+    w.gain += 0.5 * d * d * edge_length[k];
+  }
+  w.gain *= prefixes;
+  const double bits = 8.0 * double(chunk_bytes + format::kChunkOverhead + kTocEntryBytes);
+  const double per_vertex = level_vertices ? level_area / double(level_vertices) : 0.0;
+  w.cost = bits * kBoundaryBitWorth * step * per_vertex;
+  return w;
+}
+
 Result<EncodedLevels> encode_levels(const TriangleMesh& control, const PointIndex& points,
                                     const LevelEncodeOptions& o) {
   // The scratch pool lives as long as the encoding; each sample borrows one.
@@ -202,21 +239,78 @@ Result<EncodedLevels> encode_levels(const TriangleMesh& control, const LevelSamp
     // Format 1.3: boundary odd vertices also move across the boundary, to
     // where the sampler's boundary curve is (rounded at the level's step).
     std::vector<int32_t> bq;
+    std::vector<uint32_t> boundary_odds;  // per boundary edge, in order: its odd vertex
+    std::vector<double> boundary_lengths;  // ... and its edge's length (boundary_worth)
     size_t boundary_clamped = 0;
     const BoundaryChooser bchoose = [&](uint32_t, uint32_t e, const float m[3], const double b[3], const double n[3],
                                         const float* a, const float* c) {
-      if (b[0] == 0 && b[1] == 0 && b[2] == 0) return int32_t{0};  // degenerate: the decoder will not move it
       const double len = std::sqrt(std::pow(a[0] - c[0], 2.0) + std::pow(a[1] - c[1], 2.0) + std::pow(a[2] - c[2], 2.0));
+      boundary_odds.push_back(e);
+      boundary_lengths.push_back(len);
+      if (b[0] == 0 && b[1] == 0 && b[2] == 0) return int32_t{0};  // degenerate: the decoder will not move it
       const double at[3] = {m[0], m[1], m[2]};
       const Quantized q = quantize(sampler.boundary(e, at, b, n, 0.5 * len), step, 0.5);
       boundary_clamped += q.clamped;
       return q.q;
     };
     const OddChooser& odd_choice = rdo || smooth ? chosen : choose;
-    if (sampler.boundary)
-      r.refine(odd_choice, step, level.q, bchoose, step, bq, std::max(1u, o.threads));
-    else
-      r.refine(odd_choice, step, level.q, std::max(1u, o.threads));
+    const unsigned threads = std::max(1u, o.threads);
+    std::vector<uint8_t> boundary_chunk;
+    BoundaryWorth worth;
+    bool dropped = false;
+    if (!sampler.boundary) {
+      r.refine(odd_choice, step, level.q, threads);
+    } else if (!o.boundary_when_pays || rdo || smooth || !o.creases.empty()) {
+      r.refine(odd_choice, step, level.q, bchoose, step, bq, threads);
+    } else {
+      // BDRY only where it pays: the level refined with its values on a
+      // copy, their worth weighed, and the copy kept when they pay.
+      // Otherwise only the boundary odd vertices are cast again, aiming
+      // at what the boundary rule alone reaches; the others keep their
+      // values (their points, normals and casts do not depend on BDRY).
+      if (sampler.boundary_mode) sampler.boundary_mode(true);
+      const auto P = r.positions();
+      const auto T = r.triangles();
+      double area = 0;
+      for (size_t f = 0; f + 2 < T.size(); f += 3) {
+        const float* a = &P[3 * size_t{T[f]}];
+        const float* b = &P[3 * size_t{T[f + 1]}];
+        const float* c = &P[3 * size_t{T[f + 2]}];
+        const double u[3] = {double{b[0]} - a[0], double{b[1]} - a[1], double{b[2]} - a[2]};
+        const double v[3] = {double{c[0]} - a[0], double{c[1]} - a[1], double{c[2]} - a[2]};
+        area += 0.5 * std::sqrt(std::pow(u[1] * v[2] - u[2] * v[1], 2.0) + std::pow(u[2] * v[0] - u[0] * v[2], 2.0) +
+                                std::pow(u[0] * v[1] - u[1] * v[0], 2.0));
+      }
+      auto trial = LevelRefiner::create(TriangleMesh{std::vector<float>(P.begin(), P.end()), std::vector<uint32_t>(T.begin(), T.end())});
+      if (!trial.ok()) return trial.status();
+      trial.value().refine(choose, step, level.q, bchoose, step, bq, threads);
+      const bool any = std::any_of(bq.begin(), bq.end(), [](int32_t v) { return v != 0; });
+      if (any) {
+        level.boundary.step = step;
+        level.boundary.q = bq;
+        auto data = smallest_boundary_chunk(level, o.zstd_level);
+        if (!data.ok()) return data.status();
+        boundary_chunk = std::move(data).value();
+        worth = boundary_worth(bq, boundary_lengths, step, boundary_chunk.size(), area, odd + even, o.levels - l + 1);
+      }
+      if (!any || worth.pays()) {
+        r = std::move(trial).value();
+      } else {
+        dropped = true;
+        level.boundary = {};
+        boundary_chunk.clear();
+        std::vector<uint8_t> on_rim(odd, 0);
+        for (uint32_t e : boundary_odds) on_rim[e] = 1;
+        const std::vector<int32_t> kept = level.q;
+        if (sampler.boundary_mode) sampler.boundary_mode(false);
+        const OddChooser again = [&](uint32_t e, const double p[3], const double n[3], const float* a, const float* b) {
+          return on_rim[e] ? choose(e, p, n, a, b) : kept[e];
+        };
+        r.refine(again, step, level.q, threads);
+        bq.assign(bq.size(), 0);
+        boundary_clamped = 0;
+      }
+    }
 
     LevelStats st;
     st.level = l;
@@ -238,24 +332,17 @@ Result<EncodedLevels> encode_levels(const TriangleMesh& control, const LevelSamp
     st.boundary_odd = bq.size();
     for (int32_t v : bq) st.boundary_moved += v != 0;
     st.boundary_clamped = boundary_clamped;  // (apart: clamped counts odd vertices)
-    std::vector<uint8_t> boundary_chunk;
-    if (st.boundary_moved) {
-      // The smallest coding, the older ones on a tie (as choose_coding).
+    st.boundary_worth = worth;
+    st.boundary_dropped = dropped;
+    if (st.boundary_moved && boundary_chunk.empty()) {
       level.boundary.step = step;
       level.boundary.q = std::move(bq);
       // Its bytes are kept for the writer (compressed once per coding).
-      format::DisplacementCoding best_coding = format::DisplacementCoding::varint;
-      for (auto coding : {format::DisplacementCoding::byte_planes, format::DisplacementCoding::varint,
-                          format::DisplacementCoding::context}) {
-        level.boundary.coding = coding;
-        auto data = format::encode_boundary(level, o.zstd_level);
-        if (!data.ok()) return data.status();
-        if (boundary_chunk.empty() || data.value().size() < boundary_chunk.size())
-          boundary_chunk = std::move(data).value(), best_coding = coding;
-      }
-      level.boundary.coding = best_coding;
-      st.boundary_bytes = boundary_chunk.size();
+      auto data = smallest_boundary_chunk(level, o.zstd_level);
+      if (!data.ok()) return data.status();
+      boundary_chunk = std::move(data).value();
     }
+    st.boundary_bytes = boundary_chunk.size();
 
     auto chunk = choose_coding(level, o.zstd_level);
     if (!chunk.ok()) return chunk.status();

@@ -331,6 +331,7 @@ TEST_CASE("mesh input: boundary odd vertices land on the input's boundary curve 
   // hole brings them closer by itself: the next test.)
   o.control.control_faces = default_control_faces(static_cast<uint32_t>(input.triangle_count()), 0);
   MeshEncodeOptions on, off;
+  on.boundary_when_pays = false;  // every level's values, paying or not: what they do
   off.boundary_values = false;
   auto with = encode_mesh(input, o, on);
   auto without = encode_mesh(input, o, off);
@@ -407,7 +408,9 @@ TEST_CASE("mesh input: BDRY chunks are written from the bytes chosen, not compre
   EncodeOptions o;
   o.levels = 2;
   o.error = 1e-4;
-  auto r = encode_mesh(input, o);
+  MeshEncodeOptions always;
+  always.boundary_when_pays = false;  // BDRY at every level that moves a vertex
+  auto r = encode_mesh(input, o, always);
   REQUIRE(r.ok());
   const Encoding& e = r.value().encoding;
   REQUIRE(e.levels.boundary_chunks.size() == e.contents.levels.size());
@@ -433,6 +436,53 @@ TEST_CASE("mesh input: BDRY chunks are written from the bytes chosen, not compre
   for (size_t i = 0; i < c.levels.size(); ++i)
     if (!c.boundary_data[i].empty()) c.boundary_data[i][0] ^= 0x7F;  // the level index field
   CHECK(format::serialize_with_toc(c, {o.effort}).status().code() == ErrorCode::invalid_argument);
+}
+
+// BDRY only where it pays (LevelEncodeOptions::boundary_when_pays,
+// boundary_worth).  On this sphere the budget per hole already puts the
+// control rims within a few steps of the curve, and the values' bytes buy
+// less error than the level's own displacements would: the first 1.3
+// encoder wrote BDRY at all three levels, the rule at none of levels 2-3.
+// A level without it is exactly the level the boundary rule alone makes:
+// the file is byte for byte the one written with BDRY switched off at
+// those levels, and decodes as encoded.
+TEST_CASE("mesh input: BDRY only where it pays, and a level without it is the boundary rule alone", "[mesh_input]") {
+  const TriangleMesh input = sphere_with_holes(40, 80);
+  EncodeOptions o;
+  o.levels = 3;
+  o.error = 1e-4;
+  MeshEncodeOptions always;
+  always.boundary_when_pays = false;
+  auto ruled = encode_mesh(input, o);
+  auto every = encode_mesh(input, o, always);
+  REQUIRE(ruled.ok());
+  REQUIRE(every.ok());
+  const Encoding& a = ruled.value().encoding;
+  const Encoding& b = every.value().encoding;
+  uint32_t mask = ~0u;
+  size_t dropped = 0;
+  for (size_t i = 0; i < a.contents.levels.size(); ++i) {
+    const LevelStats& st = a.levels.stats[i];
+    INFO("level " << i + 1 << ": gain " << st.boundary_worth.gain << " cost " << st.boundary_worth.cost);
+    CHECK(!b.contents.levels[i].boundary.empty());  // the values move vertices at every level
+    CHECK(st.boundary_dropped == !st.boundary_worth.pays());
+    CHECK(a.contents.levels[i].boundary.empty() == st.boundary_dropped);
+    if (st.boundary_dropped) mask &= ~(1u << (i + 1)), ++dropped;
+  }
+  CHECK(dropped >= 2);
+  CHECK(a.bytes.size() < b.bytes.size());
+  // The same file as BDRY switched off at the dropped levels.
+  MeshEncodeOptions masked = always;
+  masked.boundary_levels = mask;
+  auto c = encode_mesh(input, o, masked);
+  REQUIRE(c.ok());
+  CHECK(c.value().encoding.bytes == a.bytes);
+  // Decoded = encoded at every level.
+  for (int l = 0; l <= 3; ++l) {
+    auto d = decode_bytes(a.bytes, l);
+    REQUIRE(d.ok());
+    CHECK(d.value().positions == a.levels.positions[static_cast<size_t>(l)]);
+  }
 }
 
 TEST_CASE("mesh input: a closed mesh's file does not change with boundary values on", "[mesh_input]") {

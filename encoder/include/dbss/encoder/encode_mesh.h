@@ -51,6 +51,15 @@ struct MeshEncodeOptions {
   // the surface, onto the input's boundary curve (a BDRY chunk per level
   // that moves any).  false: normal displacements only (a 1.2 file).
   bool boundary_values = true;
+  // With boundary_values: bit l set, level l may carry a BDRY chunk; a
+  // level whose bit is clear keeps the boundary rule alone (no BDRY, its
+  // boundary odd vertices cast as in a 1.2 file).  Bit 0 is unused.
+  uint32_t boundary_levels = ~0u;
+  // With boundary_values: a level writes BDRY only when its values remove
+  // more error than its bytes would at the level's own exchange rate
+  // (LevelEncodeOptions::boundary_when_pays, boundary_worth); false: BDRY
+  // wherever a value is non-zero (the first 1.3 encoder).
+  bool boundary_when_pays = true;
   // Rate-distortion optimised quantization (LevelEncodeOptions::rdo_lambda,
   // rdo_quantize.h) from level rdo_first_level on; 0: plain rounding.
   double rdo_lambda = 0;

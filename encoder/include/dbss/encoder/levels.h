@@ -39,7 +39,41 @@ struct LevelEncodeOptions {
   // false: as sampled.
   bool smooth_noise = false;
   uint32_t rdo_first_level = 1;
+  // With a sampler that gives boundary values: a level writes its BDRY
+  // chunk only when boundary_pays() says the error it removes is worth its
+  // bytes; otherwise the level keeps the boundary rule alone (no BDRY, its
+  // boundary odd vertices cast again with LevelSampler::boundary_mode
+  // false).  false: BDRY wherever a value is non-zero (the 1.3 encoder's
+  // rule).  Not with RDO or smoothing (their levels keep BDRY as before).
+  bool boundary_when_pays = false;
 };
+
+// Whether a level's BDRY values pay for their chunk, at the exchange rate
+// of the level's own displacements.  One more bit per interior odd vertex
+// halves the step, and the two-sided error it removes over the area a
+// vertex covers (a_v, the level's area over its vertex count) is about
+// step / 4 x ln 2 x a_v: an interior bit is worth kBoundaryBitWorth x step
+// x a_v of integrated distance.  A boundary odd vertex moved across the
+// boundary by d, on an edge of length h, takes away a sliver of area
+// about d h whose mean distance is about d / 2: d^2 h / 2.  So the chunk
+// pays when the sum of (value x step)^2 x h / 2 over its vertices (the
+// `gain`) is above its bits (data, 12 frame bytes and a 16-byte table
+// entry) x kBoundaryBitWorth x step x a_v (the `cost`).  A moved vertex
+// is an even vertex of every finer level, and the sliver it closes stays
+// closed there, so the gain counts once per prefix it improves
+// (`prefixes`: this level and the finer ones the file holds).  The cost
+// stays at this level's rate, where a bit buys the most error.
+// Calibrated on three meshes (bench/lod_bench.md, ninth session): on
+// elephant-with-holes level 1's values take 9% off every finer level's
+// error for 2% of its bytes; on mech-holes-shark and armadillo with 3
+// holes no level's values pay.
+inline constexpr double kBoundaryBitWorth = 0.17328679513998632;  // ln 2 / 4
+struct BoundaryWorth {
+  double gain = 0, cost = 0;
+  bool pays() const noexcept { return gain > cost; }
+};
+BoundaryWorth boundary_worth(std::span<const int32_t> bq, std::span<const double> edge_length, float step, size_t chunk_bytes,
+                             double level_area, size_t level_vertices, uint32_t prefixes = 1);
 
 struct LevelStats {
   uint32_t level = 0;
@@ -55,6 +89,11 @@ struct LevelStats {
   // value, those whose in-surface value was clamped, and the BDRY chunk's
   // data bytes (0 when the level has none).
   size_t boundary_odd = 0, boundary_moved = 0, boundary_clamped = 0, boundary_bytes = 0;
+  // With LevelEncodeOptions::boundary_when_pays: the values' worth
+  // (boundary_worth) and whether they were dropped for it (then the
+  // counts above are those of the level as written, without BDRY).
+  BoundaryWorth boundary_worth;
+  bool boundary_dropped = false;
   format::DisplacementCoding coding = format::DisplacementCoding::byte_planes;
 };
 
@@ -105,6 +144,12 @@ struct LevelSampler {
   // `n` is the vertex's unit normal.
   std::function<double(uint32_t odd, const double m[3], const double b[3], const double n[3], double half_length)>
       boundary;
+  // With LevelEncodeOptions::boundary_when_pays: switches `sample` (for odd
+  // vertices on a boundary edge) and `boundary` between aiming at BDRY
+  // values (true, what begin_level leaves) and the boundary rule alone
+  // (false: `boundary` returns 0, a boundary odd vertex takes its normal
+  // offset as a file without BDRY would).
+  std::function<void(bool values)> boundary_mode;
   // The neighbours' weight in the sampled displacements of the level that
   // crosses the points' density (`dead_zone` past 0.5 and finite:
   // smooth_displacements); 0: as sampled.
