@@ -206,10 +206,15 @@ SurfaceFit fit_height(const PointIndex& index, const double p[3], const double n
   return out;
 }
 
-bool points_are_noisy(const PointIndex& index) {
+namespace {
+
+// The median, over up to 1,024 points spread evenly through the cloud, of
+// the RMS scatter of their 24 nearest points about their fit: over the
+// neighbourhood's radius when `relative`, else in model units.
+double median_scatter(const PointIndex& index, bool relative) {
   const PointCloud& pc = index.points();
   const size_t n = pc.size(), m = std::min<size_t>(n, 1024);
-  if (m == 0) return false;
+  if (m == 0) return 0;
   FitScratch s;
   std::vector<uint32_t> near(kNoiseProbePoints);
   std::vector<float> dist2(kNoiseProbePoints);
@@ -232,11 +237,17 @@ bool points_are_noisy(const PointIndex& index) {
     const Eigen::Vector3d normal = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(cov).eigenvectors().col(0);
     const double p[3] = {x[0], x[1], x[2]}, nn[3] = {normal.x(), normal.y(), normal.z()};
     const SurfaceFit f = fit_height(index, p, nn, 0, kNoiseProbePoints, s);
-    if (f.ok && f.radius > 0) scatter.push_back(f.residual / f.radius);
+    if (f.ok && f.radius > 0) scatter.push_back(relative ? f.residual / f.radius : f.residual);
   }
-  if (scatter.empty()) return false;
+  if (scatter.empty()) return 0;
   std::nth_element(scatter.begin(), scatter.begin() + scatter.size() / 2, scatter.end());
-  return scatter[scatter.size() / 2] > kQuietScatter;
+  return scatter[scatter.size() / 2];
 }
+
+}  // namespace
+
+bool points_are_noisy(const PointIndex& index) { return median_scatter(index, true) > kQuietScatter; }
+
+double points_noise(const PointIndex& index) { return median_scatter(index, false); }
 
 }  // namespace dbss

@@ -22,13 +22,13 @@ struct ScanWarning {
 
 struct ScanCheck {
   double spacing = 0;             // the points' median distance to their nearest point, model units
-  uint32_t surface_components = 0;  // of the finest level's surface
+  uint32_t surface_components = 0;  // of the surface (every level has the same topology)
   uint32_t point_clusters = 0;      // of the points, linked at a few spacings
   bool open = false;                // the surface has a boundary
   uint32_t boundary_loops = 0;
   double clamped_share = 0;       // of the finest level's displacements, 0..1
-  double uncovered_share = 0;     // of the finest level's surface area, farther than a few spacings from any point, 0..1
-  double points_to_surface = 0;   // mean, model units, at the finest level (of at most 2^18 points: see check_scan)
+  double uncovered_share = 0;     // of the measured level's surface area, farther than a few spacings from any point, 0..1
+  double points_to_surface = 0;   // mean, model units, to the measured level (of at most 2^18 points: see check_scan)
   // Pairs of rims where the points end (point_rims.h) that look like the
   // two ends of a tube the scan cut through, and that a closed surface caps
   // instead of joining: each may be a lost handle.
@@ -36,8 +36,10 @@ struct ScanCheck {
   std::vector<ScanWarning> warnings;
 };
 
-// Checks `e` (its finest level, or the control mesh with no levels) against
-// the points `index` was built on (the points the encoder used).
+// Checks `e` (its finest level, or the first with more vertices than there
+// are points when the file goes past it: the levels after that one store
+// only zeros; the control mesh with no levels) against the points `index`
+// was built on (the points the encoder used).
 // points_to_surface is the mean over every point up to 2^18 of them, over
 // 2^18 evenly spaced in the input's order above that.  `threads` share
 // the distances; the figures are the same on any number.

@@ -78,4 +78,8 @@ SurfaceFit fit_height(const PointIndex& points, const double p[3], const double 
 // 1% clean, 2.5-10% with noise of 5e-4..2e-3 of the diagonal.
 bool points_are_noisy(const PointIndex& points);
 
+// The same fits' median RMS scatter in model units: on a noisy cloud, about
+// the noise's standard deviation along the surface's normal.
+double points_noise(const PointIndex& points);
+
 }  // namespace dbss
