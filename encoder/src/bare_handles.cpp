@@ -105,6 +105,24 @@ std::vector<float> bare_ratios(const TriangleMesh& m, const PointIndex& index) {
   return ratio;
 }
 
+std::vector<uint32_t> bare_handles_at(const TriangleMesh& m, const std::vector<float>& ratios, const std::vector<float>& reaches) {
+  std::vector<uint32_t> out(reaches.size(), 0);
+  const size_t f = m.triangle_count();
+  if (f == 0 || ratios.size() != m.vertex_count()) return out;
+  const std::vector<uint32_t> twin = twins(m);
+  if (std::count(twin.begin(), twin.end(), UINT32_MAX) > 0) return out;
+  const int64_t genus = kept_genus(twin, std::vector<uint8_t>(f, 1));
+  std::vector<uint8_t> keep(f);
+  for (size_t r = 0; r < reaches.size(); ++r) {
+    for (size_t t = 0; t < f; ++t) {
+      keep[t] = 1;
+      for (int c = 0; c < 3; ++c) keep[t] &= ratios[m.triangles[3 * t + c]] <= reaches[r];
+    }
+    out[r] = static_cast<uint32_t>(std::max<int64_t>(0, genus - kept_genus(twin, keep)));
+  }
+  return out;
+}
+
 uint32_t bare_handles(const TriangleMesh& m, const std::vector<float>& ratios, float reach,
                       std::vector<uint32_t>* bare_vertices) {
   const size_t f = m.triangle_count();

@@ -100,15 +100,13 @@ constexpr float kBareHandleReach = 3.5f;
 void check_bare_handles(ScanCheck& c, const Encoding& e, const TriangleMesh& test, const PointIndex& index) {
   const std::vector<float> ratios = bare_ratios(test, index);
   const uint32_t own = static_cast<uint32_t>(e.tubes.tubes + e.stages.bridged_tubes);
-  const auto beyond_own = [&](float reach, std::vector<uint32_t>* at) {
-    const uint32_t n = bare_handles(test, ratios, reach, at);
-    return n > own ? n - own : 0;
-  };
-  for (float reach : {2.0f, 2.5f, 3.0f, 3.5f, 4.0f, 5.0f, 6.0f, 8.0f, 12.0f})
-    if (beyond_own(reach, nullptr) > 0) c.bare_handle_reach = reach;
+  const std::vector<float> ladder{2.0f, 2.5f, 3.0f, kBareHandleReach, 4.0f, 5.0f, 6.0f, 8.0f, 12.0f};
+  const std::vector<uint32_t> bare = bare_handles_at(test, ratios, ladder);
+  for (size_t r = 0; r < ladder.size(); ++r)
+    if (bare[r] > own) c.bare_handle_reach = ladder[r];
+  if (bare[3] <= own) return;
   std::vector<uint32_t> at;
-  c.bare_handles = beyond_own(kBareHandleReach, &at);
-  if (c.bare_handles == 0) return;
+  c.bare_handles = bare_handles(test, ratios, kBareHandleReach, &at) - own;
   for (uint32_t v : at) c.bare_handle_at.push_back({test.positions[3 * v], test.positions[3 * v + 1], test.positions[3 * v + 2]});
 }
 

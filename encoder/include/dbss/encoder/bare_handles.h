@@ -29,4 +29,7 @@ std::vector<float> bare_ratios(const TriangleMesh& m, const PointIndex& index);
 uint32_t bare_handles(const TriangleMesh& m, const std::vector<float>& ratios, float reach,
                       std::vector<uint32_t>* bare_vertices = nullptr);
 
+// bare_handles at each of `reaches` (the mesh's edges paired once).
+std::vector<uint32_t> bare_handles_at(const TriangleMesh& m, const std::vector<float>& ratios, const std::vector<float>& reaches);
+
 }  // namespace dbss
