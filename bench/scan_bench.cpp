@@ -24,6 +24,7 @@
 //   data/points_3 and data/meshes (default the source tree's test-data);
 //   NAME_PART: run only the inputs whose name contains one of them.
 #include <algorithm>
+#include <numbers>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -211,6 +212,16 @@ std::vector<Input> plate_inputs(const Options& o) {
         std::snprintf(label, sizeof label, "plate %.2f %d holes s%u", 2 * half, holes, seed);
         in.push_back({label, [plate, n, seed] {
                         auto c = dt::sample_sdf(plate.sdf, plate.lo, plate.hi, n, seed);
+                        return std::pair{c, c};
+                      }, "1/" + std::to_string(holes) + "/0"});
+        // The holes' walls scanned too, at the faces' density (with_hole_walls).
+        std::snprintf(label, sizeof label, "plate %.2f %d walled s%u", 2 * half, holes, seed);
+        in.push_back({label, [plate, half, holes, n, seed] {
+                        auto c = dt::sample_sdf(plate.sdf, plate.lo, plate.hi, n, seed);
+                        const double face_area = 2 * (2 * 2 * 0.7 - holes * kRadius * kRadius * std::numbers::pi);
+                        const double wall_area = holes * 2 * std::numbers::pi * kRadius * 2 * half;
+                        const size_t wall = static_cast<size_t>(static_cast<double>(n) * wall_area / face_area);
+                        c = dt::with_hole_walls(std::move(c), holes, kRadius, half, wall, seed + 1000);
                         return std::pair{c, c};
                       }, "1/" + std::to_string(holes) + "/0"});
         std::snprintf(label, sizeof label, "plate %.2f %d gaps s%u", 2 * half, holes, seed);
@@ -433,6 +444,14 @@ int main(int argc, char** argv) {
       joined += e.tubes.tubes > 0;
 #endif
     }
+#ifdef DBSS_SCAN_CHECK
+    // How bare the least supported handle is (ScanCheck::bare_handle_reach).
+    {
+      char b[32];
+      std::snprintf(b, sizeof b, " bare:%.1f", e.check.bare_handle_reach);
+      sweep += b;
+    }
+#endif
     std::printf("%4u %5lld %5u %4s %7.2f %9.2e %7.2f %7.2f %4s %6s %7s %-7s %-9s%s\n", topo.components,
                 static_cast<long long>(topo.genus), topo.boundary_loops, topo_mark, 100 * clamped, to_surface / diag,
                 spacing > 0 ? to_surface / spacing : 0.0, seconds, "ok", surf.c_str(), dropped.c_str(), verdict,

@@ -465,17 +465,20 @@ CarvingChoice choose_carving(const PointCloud& pc, const PointIndex& index, int 
   const int finest = std::clamp(static_cast<int>(longest / spacing), 8, max_grid);
   int grid = std::clamp(static_cast<int>(longest / (2 * spacing)), 8, finest);
   std::vector<int> grids{grid};
-  while (grids.back() < finest) grids.push_back(std::min(finest, grids.back() + std::max(1, grids.back() / 12)));
-  struct Trial {
-    CarvingChoice carving;  // released once it can no longer be the choice
-    CarvingShape shape;
-  };
-  auto trial = [&](int g) {
-    Trial t;
-    t.carving = carved(g);
+  while (grids.back() < finest) grids.push_back(next_search_grid(grids.back(), finest));
+  return search_carving_grids(grids, [&](int g, double shift) {
+    CarvingTrial t;
+    t.carving.cells = carve(pc, g, &t.carving.stats, shift);
     t.shape = carving_shape(t.carving.cells);
     return t;
-  };
+  });
+}
+
+int next_search_grid(int grid, int finest) { return std::min(finest, grid + std::max(1, grid / 12)); }
+
+CarvingChoice search_carving_grids(const std::vector<int>& grids, const CarvingLook& look) {
+  using Trial = CarvingTrial;  // its carving released once it can no longer be the choice
+  auto trial = [&](int g) { return look(g, 0); };
   // Grids are tried two at a time, one per core; the choice is the same as
   // trying them one by one.
   std::vector<Trial> tried;
@@ -534,19 +537,42 @@ CarvingChoice choose_carving(const PointCloud& pc, const PointIndex& index, int 
   // gap the cells happen to straddle mostly does not.  Of the two carvings
   // the one with fewer handles is kept (a handle both show is the
   // surface's); only grids that add a handle pay for the second carving.
-  // Returns the kept carving's Euler characteristic.
+  // The moved carving's shape replaces the grid's too: the next grids'
+  // tear and collapse tests compare against the kept carving, and a stale
+  // Euler characteristic (the dropped placement's, a handle lower) let a
+  // later drop of three pass as a drop of two.
   const auto fewer_handles_moved = [&](size_t i) {
-    CarvingChoice moved;
-    moved.cells = carve(pc, grids[i], &moved.stats, 0.5);
-    const CarvingShape shape = carving_shape(moved.cells);
-    if (shape.euler > tried[i].shape.euler) tried[i].carving = std::move(moved);
-    return std::max(shape.euler, tried[i].shape.euler);
+    Trial moved = look(grids[i], 0.5);
+    if (moved.shape.euler > tried[i].shape.euler) tried[i] = std::move(moved);
+  };
+  // Whether the handles of a carving of Euler characteristic `euler` at
+  // grid i show at the next two finer grids too (a lower or equal Euler
+  // characteristic at either placement): a handle of the surface stays
+  // resolved as the cells shrink, a gap one placement straddled just so
+  // need not.  Past the search's finest grid the grids go on by the same
+  // steps, carved for this test only.
+  const auto handles_persist = [&](size_t i, int64_t euler) {
+    int g = grids[i];
+    for (size_t j = i + 1; j <= i + 2; ++j) {
+      int64_t seen;
+      if (j < grids.size()) {
+        ensure(j);
+        g = grids[j];
+        seen = tried[j].shape.euler;
+      } else {
+        g = next_search_grid(g, 1024);
+        seen = look(g, 0).shape.euler;
+      }
+      if (seen > euler && look(g, 0.5).shape.euler > euler) return false;
+    }
+    return true;
   };
   // A handle resolved at a grid whose carving needs a few cells patched is
   // looked at half a cell moved too: where both placements show a handle
-  // the choice lacks (a lower Euler characteristic) and the moved one needs
-  // no patching and does not leak, the handle is the surface's and the moved
-  // carving is kept.  The clean triple torus at 4,000 points (seed 23)
+  // the choice lacks (a lower Euler characteristic), the moved one needs
+  // no patching and does not leak, and the next two grids show it too
+  // (handles_persist), the handle is the surface's and the moved carving
+  // is kept.  The clean triple torus at 4,000 points (seed 23)
   // resolves the middle torus's hole, narrowed to 0.6 by the side tori's
   // tubes, only at its finest grid, 36, where 3 cells needed filling (the
   // bound is 2) and the Euler characteristic fell by two: the search kept
@@ -559,10 +585,8 @@ CarvingChoice choose_carving(const PointCloud& pc, const PointIndex& index, int 
     if (!patched(cur) || collapsed(cur, tried[last]) || cur.shape.euler < tried[last].shape.euler - 2 ||
         cur.shape.euler >= chosen)
       return false;
-    Trial moved;
-    moved.carving.cells = carve(pc, grids[i], &moved.carving.stats, 0.5);
-    moved.shape = carving_shape(moved.carving.cells);
-    if (moved.shape.euler >= chosen || leaks(moved, tried[last])) return false;
+    Trial moved = look(grids[i], 0.5);
+    if (moved.shape.euler >= chosen || leaks(moved, tried[last]) || !handles_persist(i, moved.shape.euler)) return false;
     tried[i] = std::move(moved);
     return true;
   };
@@ -571,15 +595,13 @@ CarvingChoice choose_carving(const PointCloud& pc, const PointIndex& index, int 
   // the cells straddle just so) are stepped over; three in a row end the
   // search.  (The bunny leaks at 42 and 45 cells, not at 43, 46 or 49.)
   std::vector<size_t> good{0};  // trials that did not leak, in order
-  int64_t chosen_euler = tried[0].shape.euler;  // of the last good trial's kept carving
   for (size_t i = 1; i < grids.size(); ++i) {
     ensure(i);
     // By index: ensure() may grow `tried`, which moves its trials.
     const size_t last = good.back();
-    if (leaks(tried[i], tried[last]) && handle_clean_moved(i, last, chosen_euler)) {
+    if (leaks(tried[i], tried[last]) && handle_clean_moved(i, last, tried[last].shape.euler)) {
       good.push_back(i);
       tried[good[good.size() - 2]].carving = {};
-      chosen_euler = tried[i].shape.euler;
       continue;
     }
     if (leaks(tried[i], tried[last]) && !handles_resolved(i, last)) {
@@ -599,7 +621,7 @@ CarvingChoice choose_carving(const PointCloud& pc, const PointIndex& index, int 
     }
     good.push_back(i);
     tried[good[good.size() - 2]].carving = {};  // only the last good trial can still be chosen
-    chosen_euler = tried[i].shape.euler < chosen_euler ? fewer_handles_moved(i) : tried[i].shape.euler;
+    if (tried[i].shape.euler < tried[good[good.size() - 2]].shape.euler) fewer_handles_moved(i);
   }
   return std::move(tried[good.back()].carving);
 }

@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "dbss/encoder/point_input.h"
@@ -66,5 +67,19 @@ struct CarvingChoice {
   int leaking_grid = 0;  // the first of the leaking grids that ended the search (0: none leaked)
 };
 CarvingChoice choose_carving(const PointCloud& points, const PointIndex& index, int max_grid = 256);
+
+// The grid search itself, on carvings `look` makes (choose_carving's: carve
+// and carving_shape at that grid and shift; tests give scripted ones):
+// grids in increasing order, each looked at unshifted, some also at shift
+// 0.5, and grids past the last by next_search_grid when a handle must be
+// seen to persist.  `look` may be called from two threads at once.
+struct CarvingTrial {
+  CarvingChoice carving;  // stats.grid, stats.shift, stats.repaired and stats.occupied are read
+  CarvingShape shape;
+};
+using CarvingLook = std::function<CarvingTrial(int grid, double shift)>;
+CarvingChoice search_carving_grids(const std::vector<int>& grids, const CarvingLook& look);
+// The search's step: grid + grid / 12 (at least 1), at most `finest`.
+int next_search_grid(int grid, int finest);
 
 }  // namespace dbss

@@ -5,6 +5,7 @@
 // under --strict, fails with nothing written.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -33,6 +34,15 @@ struct ScanCheck {
   // two ends of a tube the scan cut through, and that a closed surface caps
   // instead of joining: each may be a lost handle.
   uint32_t capped_rim_pairs = 0;
+  // Handles of a closed surface whose tunnel has no point within
+  // kBareHandleReach local spacings (bare_handles.h), beyond the tubes the
+  // encoder joined itself: a gap through a thin part taken for a hole.
+  uint32_t bare_handles = 0;
+  // The largest reach (in local spacings, of 2, 3, 4, 5, 6, 8, 12) at which
+  // some handle, the encoder's own tubes aside, is still bare; 0 if none is
+  // at 2: how far from the scan the least supported handle lies.
+  float bare_handle_reach = 0;
+  std::vector<std::array<float, 3>> bare_handle_at;  // a point on each bare handle's tunnel, model units
   std::vector<ScanWarning> warnings;
 };
 
