@@ -387,8 +387,12 @@ Sample sample_displacement(const PointIndex& index, const double pd[3], const do
     // points' surface is, without the noise of which points the line met.
     // A fit that leaves the cylinder the hit was found in (its neighbourhood
     // reaches past the cylinder on a sparse scan) is not trusted over it.
+    // A clean cloud's fit (no `widen`) with the tight kernel; one-sided
+    // sampling beside creases keeps the narrow one (its wedge and sides are
+    // tuned with it).
     if (fit) {
-      const SurfaceFit f = fit_height(index, pd, nd, d, kFitPoints, scratch.fit, sides, widen);
+      const bool tight = !widen && original_sides == nullptr;
+      const SurfaceFit f = fit_height(index, pd, nd, d, kFitPoints, scratch.fit, sides, widen, tight);
       if (f.ok && (std::abs(f.height) <= half_length || std::abs(d) > half_length))
         d = f.height, out.fitted = true, out.spread = f.spread;
     }

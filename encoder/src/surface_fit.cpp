@@ -45,11 +45,24 @@ double residual(const FitScratch& s, size_t i, const Eigen::Matrix<double, 6, 1>
 // of sigma radius / sqrt(2), which averages about twice as many points
 // (noise of 1e-3 of the diagonal: the narrow kernel alone left level 3 3%
 // farther from the truth).
-enum class Kernel { narrow, wide };
+//
+// Tight: (1 - r^2)^4, for clean clouds (fit_height's `tight`).  Half the
+// narrow kernel's width at half weight (0.42 of the radius against 0.54),
+// so a bend of the surface inside the neighbourhood is rounded over less of
+// it.  Measured with bench/floor_probe --regions (30k points, no noise):
+// the true meshes bend at their edges (the eight's facets meet at 15-33
+// degrees), advancing front through the points is exact beyond a spacing
+// from those edges, and the narrow fit's level surface was not: 1-4
+// spacings from them it added 27e-6 of the eight's 112e-6 (advancing front
+// 2e-6).  With the tight kernel the finest level comes 4-10% closer on all
+// five rd_bench shapes (bench/rd_bench.md, twelfth session).
+enum class Kernel { narrow, wide, tight };
 double kernel_weight(Kernel k, double u, double v) {
   const double r2 = u * u + v * v;
   if (k == Kernel::wide) return std::exp(-2 * r2);
-  return r2 < 1 ? (1 - r2) * (1 - r2) : 0;
+  if (r2 >= 1) return 0;
+  const double w = (1 - r2) * (1 - r2);
+  return k == Kernel::tight ? w * w : w;
 }
 
 // The scatter (RMS residual over the radius) below which the points are
@@ -152,7 +165,7 @@ double gather(const PointIndex& index, const double p[3], const double n[3], dou
 }  // namespace
 
 SurfaceFit fit_height(const PointIndex& index, const double p[3], const double n[3], double t0, size_t k,
-                      FitScratch& s, const PointSides* sides, bool widen) {
+                      FitScratch& s, const PointSides* sides, bool widen, bool tight) {
   SurfaceFit out;
   const double radius = gather(index, p, n, t0, k, s, sides);
   if (!(radius > 0)) return out;
@@ -161,7 +174,7 @@ SurfaceFit fit_height(const PointIndex& index, const double p[3], const double n
   // The quadric where the points are enough to pin its curvature terms.
   bool quadric = used >= 12;
   Fitted narrow;
-  if (!fit_weighted(s, quadric, Kernel::narrow, radius, narrow)) return out;
+  if (!fit_weighted(s, quadric, tight ? Kernel::tight : Kernel::narrow, radius, narrow)) return out;
   double height = narrow.height, spread = narrow.residual, error = narrow.spread;
   // Points scattered about the narrow fit by more than kQuietScatter of the
   // radius are noise, not shape: the wide kernel averages more of them.

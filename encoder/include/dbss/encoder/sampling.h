@@ -54,7 +54,10 @@ struct SampleScratch {
 // the fit fails.  `sides` (may be null): one-sided, the hit and the fit
 // from the points whose normal agrees with n (PointSides), unless fewer
 // than 3 of them are in the cylinder.
-// `widen`: fit_height's wider fit on noise (a cloud points_are_noisy).
+// `widen`: fit_height's wider fit on noise (a cloud points_are_noisy);
+// without it and without `sides`, fit_height's tight kernel (a clean
+// cloud's fit keeps to the nearest points: bench/rd_bench.md, twelfth
+// session).
 Sample sample_displacement(const PointIndex& points, const double p[3], const double n[3], double radius,
                            double half_length, SampleScratch& scratch, bool fit = true, const PointSides* sides = nullptr,
                            bool widen = false);

@@ -66,9 +66,12 @@ struct SurfaceFit {
 // `sides` (may be null): only the points whose normal agrees with n.
 // `widen`: where the points scatter like noise, also try twice the points
 // and keep that fit when it agrees with the first (points_are_noisy says
-// when to ask for it).
+// when to ask for it).  `tight`: the first fit's kernel twice as steep
+// ((1 - r^2)^4 over the neighbourhood's radius, not (1 - r^2)^2), for clean
+// clouds, where there is no noise to average and a wide kernel only rounds
+// the surface's bends.
 SurfaceFit fit_height(const PointIndex& points, const double p[3], const double n[3], double t0, size_t k,
-                      FitScratch& scratch, const PointSides* sides = nullptr, bool widen = false);
+                      FitScratch& scratch, const PointSides* sides = nullptr, bool widen = false, bool tight = false);
 
 // True when the cloud as a whole scatters like noise about its local
 // surface: the median, over up to 1,024 points spread evenly through it, of
