@@ -243,7 +243,11 @@ format::Creases find_creases(TriangleMesh& mesh, const PointIndex& points, const
   st.align_relaxed = aligned.relaxed;
   st.align_valence_flips = aligned.valence_flips;
   auto built = build_topology(static_cast<uint32_t>(mesh.vertex_count()), mesh.triangles);
-  if (!built.ok()) return out;
+  if (!built.ok()) {  // no tags either way: the mesh as it came (review)
+    mesh.positions = unaligned, mesh.triangles = unaligned_triangles;
+    if (stats) *stats = st;
+    return out;
+  }
   const LevelTopology& t = built.value();
   const PointCloud& pc = points.points();
   const double min_cos = std::cos(o.angle_degrees * 3.14159265358979323846 / 180);

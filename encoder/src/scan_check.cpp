@@ -65,20 +65,30 @@ double sampled_points_to_mesh(const PointCloud& pc, const TriangleMesh& mesh, un
   return sum / static_cast<double>(m);
 }
 
-// The level the surface's figures (components, uncovered area, the points'
-// distance) are measured on: the finest, or the first with more vertices
-// than there are points when the file goes past it.  Every level after that
-// one stores only zeros (dead_zone_steps): it is the plain butterfly
-// refinement of it, the same surface to well within a point spacing, at 4
-// to 64 times the triangles.  Measured at --levels 6 (30k noisy points,
-// rd_bench): the check over the finest level took 77-513 s wall under load,
-// more than the levels, in the TriangleTree and the uncovered area's
-// nearest-point query per triangle.
-size_t measured_level(const Encoding& e, size_t points) {
+// The level the surface's figures (components, uncovered area, clamped
+// share, the points' distance) are measured on: the finest level that
+// sampled anything.  Past the points' density (dead_zone_steps) a level
+// samples nothing and stores only zeros: it is the plain butterfly
+// refinement of the one before, the same surface to well within a point
+// spacing, at 4 to 64 times the triangles, and its clamped count is 0 by
+// construction.  The levels' own stats say which level that is, so the
+// count of points the levels used (the scan's, plus any a joined tube
+// added) needs no second guess here.  Measured at --levels 6 (30k noisy
+// points, rd_bench): the check over the finest level took 77-513 s wall
+// under load, more than the levels, in the TriangleTree and the uncovered
+// area's nearest-point query per triangle.
+size_t measured_level(const Encoding& e) {
   const size_t last = e.levels.positions.size() - 1;
-  for (size_t l = 0; l < last; ++l)
-    if (e.levels.positions[l].size() / 3 > points) return l;
+  for (auto it = e.levels.stats.rbegin(); it != e.levels.stats.rend(); ++it)
+    if (it->by_triangle + it->by_plane + it->by_nearest > 0 && it->level <= last) return it->level;
   return last;
+}
+
+// The stats of level l (none for the control mesh, level 0).
+const LevelStats* level_stats(const Encoding& e, size_t l) {
+  for (const LevelStats& st : e.levels.stats)
+    if (st.level == l) return &st;
+  return nullptr;
 }
 
 // Each triangle of m cut into four at its edges' midpoints (flat: the
@@ -141,7 +151,7 @@ ScanCheck check_scan(const Encoding& e, const PointIndex& index, unsigned thread
   c.spacing = point_spacing(index, 1, 0.5);
   TriangleMesh finest;
   if (!e.levels.positions.empty()) {
-    const size_t l = measured_level(e, pc.size());
+    const size_t l = measured_level(e);
     finest.positions = e.levels.positions[l];
     finest.triangles = e.levels.triangles[l];
   } else {
@@ -169,10 +179,9 @@ ScanCheck check_scan(const Encoding& e, const PointIndex& index, unsigned thread
     // vertices), and their number of pieces is the figure to show.
     if (c.point_clusters == 0) c.point_clusters = count;
   }
-  if (!e.levels.stats.empty()) {
-    const LevelStats& last = e.levels.stats.back();
-    c.clamped_share = static_cast<double>(last.clamped) / static_cast<double>(std::max<size_t>(1, last.odd));
-  }
+  const size_t measured = e.levels.positions.empty() ? 0 : measured_level(e);
+  if (const LevelStats* st = level_stats(e, measured))
+    c.clamped_share = static_cast<double>(st->clamped) / static_cast<double>(std::max<size_t>(1, st->odd));
   // Uncovered area: triangles whose centroid has no point near.
   double total = 0, bare = 0;
   // Uneven scans have sparse stretches a few median spacings wide that are
@@ -252,7 +261,7 @@ ScanCheck check_scan(const Encoding& e, const PointIndex& index, unsigned thread
   }
 
   const auto warn = [&](const char* code, const std::string& message) { c.warnings.push_back({code, message}); };
-  const uint32_t level = static_cast<uint32_t>(e.levels.stats.size());
+  const uint32_t level = static_cast<uint32_t>(measured);
   if (c.surface_components != c.point_clusters)
     warn("components", "the surface has " + std::to_string(c.surface_components) + " component(s) where the points form " +
                            std::to_string(c.point_clusters) +
