@@ -269,9 +269,10 @@ int main(int argc, char** argv) {
         // paper's sampler).
         const bool fit = v.rfind("hit", 0) != 0;
         const bool widen = dbss::points_are_noisy(index);  // as encode_levels decides
-        sampler.sample = [&, fit, widen](uint32_t, const double q[3], const double n[3], double half_length) {
+        const bool tight = !widen && dbss::points_are_quiet(index);
+        sampler.sample = [&, fit, widen, tight](uint32_t, const double q[3], const double n[3], double half_length) {
           thread_local dbss::SampleScratch scratch;
-          const dbss::Sample s = dbss::sample_displacement(index, q, n, half_length, half_length, scratch, fit, nullptr, widen);
+          const dbss::Sample s = dbss::sample_displacement(index, q, n, half_length, half_length, scratch, fit, nullptr, widen, tight);
           double t = 0;
           if (tree.nearest_line_hit(q, n, half_length, t)) {
             std::lock_guard<std::mutex> lock(mutex);

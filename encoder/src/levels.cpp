@@ -144,10 +144,12 @@ Result<EncodedLevels> encode_levels(const TriangleMesh& control, const PointInde
   // On a noisy cloud the fit may widen (surface_fit.h); a clean one keeps
   // its narrow fits, byte for byte.
   const bool widen = points_are_noisy(points);
+  // The tight kernel where the scatter is the shape's, not mild noise's.
+  const bool tight = !widen && points_are_quiet(points);
   LevelSampler sampler;
-  sampler.sample = [&points, scratch, normals, lines, sides, widen](uint32_t, const double p[3], const double n[3], double half_length) {
+  sampler.sample = [&points, scratch, normals, lines, sides, widen, tight](uint32_t, const double p[3], const double n[3], double half_length) {
     SampleScratch& mine = scratch->take();
-    const Sample s = sample_displacement(points, p, n, half_length, half_length, mine, true, sides.normals ? &sides : nullptr, widen);
+    const Sample s = sample_displacement(points, p, n, half_length, half_length, mine, true, sides.normals ? &sides : nullptr, widen, tight);
     scratch->give(mine);
     return s;
   };

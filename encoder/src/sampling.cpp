@@ -348,7 +348,8 @@ Sample sample_displacement(const PointIndex& index, const double p[3], const dou
 }
 
 Sample sample_displacement(const PointIndex& index, const double pd[3], const double nd[3], double radius,
-                           double half_length, SampleScratch& scratch, bool fit, const PointSides* sides, bool widen) {
+                           double half_length, SampleScratch& scratch, bool fit, const PointSides* sides, bool widen,
+                           bool tight) {
   const PointCloud& pc = index.points();
   const V p(pd[0], pd[1], pd[2]), n(nd[0], nd[1], nd[2]);
   const auto point = [&](uint32_t i) { return V(pc.xyz[3 * i], pc.xyz[3 * i + 1], pc.xyz[3 * i + 2]); };
@@ -387,12 +388,12 @@ Sample sample_displacement(const PointIndex& index, const double pd[3], const do
     // points' surface is, without the noise of which points the line met.
     // A fit that leaves the cylinder the hit was found in (its neighbourhood
     // reaches past the cylinder on a sparse scan) is not trusted over it.
-    // A clean cloud's fit (no `widen`) with the tight kernel; one-sided
+    // A clean cloud's fit (no `widen`, `tight`) with the tight kernel; one-sided
     // sampling beside creases keeps the narrow one (its wedge and sides are
     // tuned with it).
     if (fit) {
-      const bool tight = !widen && original_sides == nullptr;
-      const SurfaceFit f = fit_height(index, pd, nd, d, kFitPoints, scratch.fit, sides, widen, tight);
+      const SurfaceFit f = fit_height(index, pd, nd, d, kFitPoints, scratch.fit, sides, widen,
+                                      tight && !widen && original_sides == nullptr);
       if (f.ok && (std::abs(f.height) <= half_length || std::abs(d) > half_length))
         d = f.height, out.fitted = true, out.spread = f.spread;
     }

@@ -74,6 +74,19 @@ constexpr double kQuietScatter = 0.02;
 // points_are_noisy's neighbourhood: the fit's own (kFitPoints, sampling.h).
 constexpr size_t kNoiseProbePoints = 24;
 
+// points_are_quiet: the tight kernel only where the median ratio of the
+// 12-point fit's scatter to the 24-point fit's is under this.  Measured
+// (rd_bench, 30k points, seed 1; ratio, then the finest level tight against
+// narrow): no noise 0.29-0.33 (tight 4-10% closer); armadillo at noise 1e-4
+// of the diagonal 0.38 (-8.4%), elephant 1e-4 0.48 (-5.2%), eight 1e-4 0.51
+// (-5.2%); elephant 2e-4 0.56 (+2.5%: tight lost).  See bench/rd_bench.md,
+// twelfth session (h12-mild).
+constexpr double kShapeScatterRatio = 0.54;
+
+// A fit whose points scatter under this fraction of its radius is exact
+// (a plane, float rounding): its ratio says nothing of noise.
+constexpr double kExactScatter = 1e-4;
+
 // A wider neighbourhood's fit is taken on noise when its height and the
 // first fit's lie within this many of their standard errors (summed) of
 // each other: their confidence intervals overlap.  Measured on noisy
@@ -221,6 +234,24 @@ SurfaceFit fit_height(const PointIndex& index, const double p[3], const double n
 
 namespace {
 
+// The plane normal of the kNoiseProbePoints nearest x; false with under 6.
+bool probe_normal(const PointIndex& index, const float* x, std::vector<uint32_t>& near, std::vector<float>& dist2,
+                  Eigen::Vector3d& normal) {
+  const PointCloud& pc = index.points();
+  const size_t found = index.nearest_k(x, kNoiseProbePoints, near.data(), dist2.data());
+  if (found < 6) return false;
+  Eigen::Vector3d c = Eigen::Vector3d::Zero();
+  for (size_t a = 0; a < found; ++a) c += Eigen::Vector3d(pc.xyz[3 * near[a]], pc.xyz[3 * near[a] + 1], pc.xyz[3 * near[a] + 2]);
+  c /= static_cast<double>(found);
+  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+  for (size_t a = 0; a < found; ++a) {
+    const Eigen::Vector3d d = Eigen::Vector3d(pc.xyz[3 * near[a]], pc.xyz[3 * near[a] + 1], pc.xyz[3 * near[a] + 2]) - c;
+    cov += d * d.transpose();
+  }
+  normal = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(cov).eigenvectors().col(0);
+  return true;
+}
+
 // The median, over up to 1,024 points spread evenly through the cloud, of
 // the RMS scatter of their 24 nearest points about their fit: over the
 // neighbourhood's radius when `relative`, else in model units.
@@ -236,18 +267,8 @@ double median_scatter(const PointIndex& index, bool relative) {
   for (size_t j = 0; j < m; ++j) {
     const size_t i = j * n / m;
     const float* x = &pc.xyz[3 * i];
-    const size_t found = index.nearest_k(x, kNoiseProbePoints, near.data(), dist2.data());
-    if (found < 6) continue;
-    // The neighbours' plane normal, then the fit along it through the point.
-    Eigen::Vector3d c = Eigen::Vector3d::Zero();
-    for (size_t a = 0; a < found; ++a) c += Eigen::Vector3d(pc.xyz[3 * near[a]], pc.xyz[3 * near[a] + 1], pc.xyz[3 * near[a] + 2]);
-    c /= static_cast<double>(found);
-    Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
-    for (size_t a = 0; a < found; ++a) {
-      const Eigen::Vector3d d = Eigen::Vector3d(pc.xyz[3 * near[a]], pc.xyz[3 * near[a] + 1], pc.xyz[3 * near[a] + 2]) - c;
-      cov += d * d.transpose();
-    }
-    const Eigen::Vector3d normal = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(cov).eigenvectors().col(0);
+    Eigen::Vector3d normal;
+    if (!probe_normal(index, x, near, dist2, normal)) continue;
     const double p[3] = {x[0], x[1], x[2]}, nn[3] = {normal.x(), normal.y(), normal.z()};
     const SurfaceFit f = fit_height(index, p, nn, 0, kNoiseProbePoints, s);
     if (f.ok && f.radius > 0) scatter.push_back(relative ? f.residual / f.radius : f.residual);
@@ -257,7 +278,46 @@ double median_scatter(const PointIndex& index, bool relative) {
   return scatter[scatter.size() / 2];
 }
 
+// Whether the scatter the cloud's fits see is the shape's or noise's: the
+// median, over the same probe points as median_scatter, of the RMS residual
+// of the fit to the 12 nearest points over that to the 24 nearest.  A
+// quadric's leftover from the shape grows with the neighbourhood's radius
+// cubed, so halving the points (radius / sqrt 2) leaves about a third of it
+// (rd_bench shapes without noise: 0.29-0.33); noise stays (with the dropped
+// degrees of freedom, about 0.6).  Fits with a scatter under kExactScatter of
+// the radius (planes, float rounding) count as shape.
+double median_scatter_ratio(const PointIndex& index) {
+  const PointCloud& pc = index.points();
+  const size_t n = pc.size(), m = std::min<size_t>(n, 1024);
+  if (m == 0) return 0;
+  FitScratch s;
+  std::vector<uint32_t> near(kNoiseProbePoints);
+  std::vector<float> dist2(kNoiseProbePoints);
+  std::vector<double> ratio;
+  ratio.reserve(m);
+  for (size_t j = 0; j < m; ++j) {
+    const size_t i = j * n / m;
+    const float* x = &pc.xyz[3 * i];
+    Eigen::Vector3d normal;
+    if (!probe_normal(index, x, near, dist2, normal)) continue;
+    const double p[3] = {x[0], x[1], x[2]}, nn[3] = {normal.x(), normal.y(), normal.z()};
+    const SurfaceFit all = fit_height(index, p, nn, 0, kNoiseProbePoints, s);
+    if (!all.ok || !(all.radius > 0)) continue;
+    if (all.residual < kExactScatter * all.radius) {
+      ratio.push_back(0);
+      continue;
+    }
+    const SurfaceFit half = fit_height(index, p, nn, 0, kNoiseProbePoints / 2, s);
+    if (half.ok) ratio.push_back(half.residual / all.residual);
+  }
+  if (ratio.empty()) return 0;
+  std::nth_element(ratio.begin(), ratio.begin() + ratio.size() / 2, ratio.end());
+  return ratio[ratio.size() / 2];
+}
+
 }  // namespace
+
+bool points_are_quiet(const PointIndex& index) { return median_scatter_ratio(index) < kShapeScatterRatio; }
 
 bool points_are_noisy(const PointIndex& index) { return median_scatter(index, true) > kQuietScatter; }
 

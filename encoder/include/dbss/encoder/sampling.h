@@ -55,12 +55,12 @@ struct SampleScratch {
 // from the points whose normal agrees with n (PointSides), unless fewer
 // than 3 of them are in the cylinder.
 // `widen`: fit_height's wider fit on noise (a cloud points_are_noisy);
-// without it and without `sides`, fit_height's tight kernel (a clean
-// cloud's fit keeps to the nearest points: bench/rd_bench.md, twelfth
-// session).
+// without it, without `sides` and with `tight` (a cloud points_are_quiet),
+// fit_height's tight kernel (a clean cloud's fit keeps to the nearest
+// points: bench/rd_bench.md, twelfth session).
 Sample sample_displacement(const PointIndex& points, const double p[3], const double n[3], double radius,
                            double half_length, SampleScratch& scratch, bool fit = true, const PointSides* sides = nullptr,
-                           bool widen = false);
+                           bool widen = false, bool tight = true);
 // The same with scratch space of its own (allocated per call): for single
 // samples and tests.
 Sample sample_displacement(const PointIndex& points, const double p[3], const double n[3], double radius,
