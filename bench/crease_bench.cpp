@@ -277,6 +277,8 @@ int main(int argc, char** argv) {
       }
       // CREASE_BENCH_SMOOTH=R: CreaseOptions::smooth_ratio (0: without the smooth test, as before it).
       if (const char* r = std::getenv("CREASE_BENCH_SMOOTH")) eo.creases.smooth_ratio = std::atof(r);
+      // CREASE_BENCH_RUNS=R: CreaseOptions::chain_run_ratio (0: short chain runs kept untested, as before it).
+      if (const char* r = std::getenv("CREASE_BENCH_RUNS")) eo.creases.chain_run_ratio = std::atof(r);
       eo.control.shape.enabled = shaping;
       eo.creases.split = split;
       eo.choose_control = !fixed_control;
@@ -351,8 +353,8 @@ int main(int argc, char** argv) {
                 "diagonal); feature length found %.3f, true %.3f (diagonals); tags %zu bytes\n\n",
                 r.stats.creases, r.stats.edges_tested, r.stats.gaps_closed, r.stats.corners, r.stats.darts, r.stats.snapped, r.stats.max_snap / diag,
                 r.length / diag, true_length / diag, r.tag_bytes);
-    std::printf("tags against the true features: %zu true, %zu false edges, missed %.3f of %.3f (diagonals), %zu smooth-rejected\n\n",
-                r.tags.truly, r.tags.falsely, r.tags.missed / diag, r.tags.total / diag, r.stats.smooth_rejected);
+    std::printf("tags against the true features: %zu true, %zu false edges, missed %.3f of %.3f (diagonals), %zu smooth-rejected, %zu untagged in lone short chain runs\n\n",
+                r.tags.truly, r.tags.falsely, r.tags.missed / diag, r.tags.total / diag, r.stats.smooth_rejected, r.stats.chain_runs_dropped);
     std::printf("sampler, levels 1..%u (on): clamped", levels);
     for (const auto& ls : r.levels) std::printf(" %zu", ls.clamped);
     std::printf("; nearest-point fallback");

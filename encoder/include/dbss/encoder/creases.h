@@ -137,6 +137,14 @@ struct CreaseOptions {
   // Retry, with a lower quality floor, the move onto its line of a vertex
   // in a gap of the line's chain (crease_align.cpp 2a).
   bool gap_snaps = true;
+  // Chain edges too short for their own smooth test, in a lone run of one
+  // or two (no chain edge that passed joins it), are tested over their 32
+  // nearest points each and untagged unless the quadric fits this many
+  // times worse than two planes (creases.cpp, judge_unfit_runs); <= 0:
+  // kept untested.  Lower than smooth_ratio: at that width a true crease's
+  // sides bend too (the fandisk's short runs 2.7-7.5); bunny00's lone runs,
+  // seeds 1-3, measured 0.4-2.05 (bench/crease_bench.md, twelfth session).
+  double chain_run_ratio = 2.5;
 };
 
 struct CreaseStats {
@@ -152,6 +160,7 @@ struct CreaseStats {
   // (crease_align.h): counts of its vertices moved and edges flipped.
   size_t aligned = 0, align_flips = 0, align_valence_flips = 0, align_splits = 0, align_collapses = 0, align_relaxed = 0;
   size_t chain_edges = 0;  // tagged as joining two aligned vertices along their line
+  size_t chain_runs_dropped = 0;  // chain edges untagged by the lone-run test (CreaseOptions::chain_run_ratio)
   size_t flat_corners = 0;  // smooth vertices of flat, irregular fans tagged corner (CreaseOptions::flat_corners)
   size_t flat_corners_dropped = 0;  // of those chosen, untagged by the check (CreaseOptions::flat_fan_check)
 };
