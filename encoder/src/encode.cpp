@@ -100,8 +100,9 @@ int control_bits(const Encoding& e, const PointIndex& index, const EncodeOptions
 }
 
 // Everything after the control mesh, up to the levels: Draco's position
-// bits, creases, the control mesh through Draco, the levels.
-Status encode_over_control(Encoding& e, const PointIndex& index, const EncodeOptions& o, BitsRule rule) {
+// bits, creases, the control mesh through Draco, the levels.  `noise`:
+// point_noise(index), measured once per encoding.
+Status encode_over_control(Encoding& e, const PointIndex& index, const PointNoise& noise, const EncodeOptions& o, BitsRule rule) {
   format::FileContents& c = e.contents;
   const PointCloud& pc = index.points();
   e.control_bits = control_bits(e, index, o, rule);
@@ -149,7 +150,7 @@ Status encode_over_control(Encoding& e, const PointIndex& index, const EncodeOpt
     lo.on_level = [&](uint32_t l) {
       o.on_progress("sampling level " + std::to_string(l) + " of " + std::to_string(level_count));
     };
-  auto encoded = encode_levels(e.control, index, lo);
+  auto encoded = encode_levels(e.control, index, noise, lo);
   if (!encoded.ok()) return encoded.status();
   e.levels = std::move(encoded).value();
   e.seconds.levels = since(t);
@@ -167,7 +168,7 @@ Status encode_over_control(Encoding& e, const PointIndex& index, const EncodeOpt
 // floor; with half the faces it crosses at half the vertices and its later
 // levels store only zeros (armadillo: 1.25x advancing front's error, issue
 // 15).  `choice` says what was kept and why, for `meta`.
-Status choose_control(Encoding& e, Encoding coarse, const PointIndex& index, const EncodeOptions& o) {
+Status choose_control(Encoding& e, Encoding coarse, const PointIndex& index, const PointNoise& noise, const EncodeOptions& o) {
   const auto t = Clock::now();
   const uint32_t faces = static_cast<uint32_t>(e.stages.control.triangle_count());
   const double default_work = e.seconds.control + e.seconds.draco + e.seconds.levels;
@@ -234,7 +235,7 @@ Status choose_control(Encoding& e, Encoding coarse, const PointIndex& index, con
   }
   coarse.stages = std::move(stages).value();
   coarse.seconds.control = since(t);
-  if (Status st = encode_over_control(coarse, index, oq, BitsRule::from_step); !st.ok()) {
+  if (Status st = encode_over_control(coarse, index, noise, oq, BitsRule::from_step); !st.ok()) {
     e.control_choice = std::to_string(faces) + " faces: the default (" + std::to_string(fewer) + " failed: " + st.to_string() + ")";
     return {};
   }
@@ -369,6 +370,9 @@ Result<Encoding> encode_points(const PointIndex& input_index, const EncodeOption
   PointCloud joined;
   const std::unique_ptr<PointIndex> joined_index = join_cut_tubes(e, scan_index, co, joined);
   const PointIndex& index = joined_index ? *joined_index : scan_index;
+  // How the points scatter about their surface: what every candidate's
+  // levels fit by (encode_levels), measured once (its time counted here).
+  const PointNoise noise = point_noise(index);
   e.seconds.control = since(t);
 
   // (A joined tube may reach past the scan's own box: the box bounds the surface.)
@@ -400,10 +404,10 @@ Result<Encoding> encode_points(const PointIndex& input_index, const EncodeOption
   // The mesh kept is then encoded again with it.
   EncodeOptions compared = o;
   compared.smooth_noise = false;
-  if (Status st = encode_over_control(e, index, choose ? compared : o, choose ? BitsRule::from_step : BitsRule::from_level0); !st.ok())
+  if (Status st = encode_over_control(e, index, noise, choose ? compared : o, choose ? BitsRule::from_step : BitsRule::from_level0); !st.ok())
     return st;
   if (choose) {
-    if (Status st = choose_control(e, std::move(*coarse), index, compared); !st.ok()) return st;
+    if (Status st = choose_control(e, std::move(*coarse), index, noise, compared); !st.ok()) return st;
     coarse.reset();
     // Creases snap the control mesh in place (find_creases): a mesh with
     // them keeps the step's bits rather than being snapped twice (and
@@ -421,10 +425,10 @@ Result<Encoding> encode_points(const PointIndex& input_index, const EncodeOption
       }
       return false;
     };
-    const bool smooth = o.smooth_noise && points_are_noisy(index) && crosses_density();
+    const bool smooth = o.smooth_noise && noise.noisy && crosses_density();
     if (e.creases.creases == 0 && e.creases.snapped == 0 && (rebits || smooth)) {
       const double first = e.seconds.draco + e.seconds.levels;
-      if (Status st = encode_over_control(e, index, o, BitsRule::from_level0); !st.ok()) return st;
+      if (Status st = encode_over_control(e, index, noise, o, BitsRule::from_level0); !st.ok()) return st;
       // The first pass over the kept mesh was the comparison's cost.
       e.seconds.choice += first;
       e.control_choice += "; compared with the step's control bits" + std::string(smooth ? " and unsmoothed levels" : "") +

@@ -123,6 +123,11 @@ BoundaryWorth boundary_worth(std::span<const int32_t> bq, std::span<const double
 
 Result<EncodedLevels> encode_levels(const TriangleMesh& control, const PointIndex& points,
                                     const LevelEncodeOptions& o) {
+  return encode_levels(control, points, point_noise(points), o);
+}
+
+Result<EncodedLevels> encode_levels(const TriangleMesh& control, const PointIndex& points, const PointNoise& noise,
+                                    const LevelEncodeOptions& o) {
   // The scratch pool lives as long as the encoding; each sample borrows one.
   auto scratch = std::make_shared<ScratchPool>();
   // With creases, one-sided sampling: a line next to a crease sees only the
@@ -143,9 +148,9 @@ Result<EncodedLevels> encode_levels(const TriangleMesh& control, const PointInde
   }
   // On a noisy cloud the fit may widen (surface_fit.h); a clean one keeps
   // its narrow fits, byte for byte.
-  const bool widen = points_are_noisy(points);
+  const bool widen = noise.noisy;
   // The tight kernel where the scatter is the shape's, not mild noise's.
-  const bool tight = !widen && points_are_quiet(points);
+  const bool tight = !widen && noise.quiet;
   LevelSampler sampler;
   sampler.sample = [&points, scratch, normals, lines, sides, widen, tight](uint32_t, const double p[3], const double n[3], double half_length) {
     SampleScratch& mine = scratch->take();
@@ -156,7 +161,7 @@ Result<EncodedLevels> encode_levels(const TriangleMesh& control, const PointInde
   if (o.smooth_noise && widen) sampler.smoothing = kNeighbourWeight;
   // On noise, every level's step is at least kNoiseStep of the noise.
   if (widen) {
-    const float noisy = std::max(o.step, static_cast<float>(kNoiseStep * points_noise(points)));
+    const float noisy = std::max(o.step, static_cast<float>(kNoiseStep * noise.noise));
     sampler.step = [noisy](uint32_t, size_t, size_t) { return noisy; };
   }
   const size_t point_count = points.points().size();

@@ -252,49 +252,15 @@ bool probe_normal(const PointIndex& index, const float* x, std::vector<uint32_t>
   return true;
 }
 
-// The median, over up to 1,024 points spread evenly through the cloud, of
-// the RMS scatter of their 24 nearest points about their fit: over the
-// neighbourhood's radius when `relative`, else in model units.
-double median_scatter(const PointIndex& index, bool relative) {
+// Each of up to 1,024 points spread evenly through the cloud, with the
+// plane normal of its kNoiseProbePoints nearest and the fit of those points
+// along it (fit_height): `look(p, n, fit)` for every probe whose fit is ok.
+template <class Look>
+void walk_probes(const PointIndex& index, FitScratch& s, Look&& look) {
   const PointCloud& pc = index.points();
   const size_t n = pc.size(), m = std::min<size_t>(n, 1024);
-  if (m == 0) return 0;
-  FitScratch s;
   std::vector<uint32_t> near(kNoiseProbePoints);
   std::vector<float> dist2(kNoiseProbePoints);
-  std::vector<double> scatter;
-  scatter.reserve(m);
-  for (size_t j = 0; j < m; ++j) {
-    const size_t i = j * n / m;
-    const float* x = &pc.xyz[3 * i];
-    Eigen::Vector3d normal;
-    if (!probe_normal(index, x, near, dist2, normal)) continue;
-    const double p[3] = {x[0], x[1], x[2]}, nn[3] = {normal.x(), normal.y(), normal.z()};
-    const SurfaceFit f = fit_height(index, p, nn, 0, kNoiseProbePoints, s);
-    if (f.ok && f.radius > 0) scatter.push_back(relative ? f.residual / f.radius : f.residual);
-  }
-  if (scatter.empty()) return 0;
-  std::nth_element(scatter.begin(), scatter.begin() + scatter.size() / 2, scatter.end());
-  return scatter[scatter.size() / 2];
-}
-
-// Whether the scatter the cloud's fits see is the shape's or noise's: the
-// median, over the same probe points as median_scatter, of the RMS residual
-// of the fit to the 12 nearest points over that to the 24 nearest.  A
-// quadric's leftover from the shape grows with the neighbourhood's radius
-// cubed, so halving the points (radius / sqrt 2) leaves about a third of it
-// (rd_bench shapes without noise: 0.29-0.33); noise stays (with the dropped
-// degrees of freedom, about 0.6).  Fits with a scatter under kExactScatter of
-// the radius (planes, float rounding) count as shape.
-double median_scatter_ratio(const PointIndex& index) {
-  const PointCloud& pc = index.points();
-  const size_t n = pc.size(), m = std::min<size_t>(n, 1024);
-  if (m == 0) return 0;
-  FitScratch s;
-  std::vector<uint32_t> near(kNoiseProbePoints);
-  std::vector<float> dist2(kNoiseProbePoints);
-  std::vector<double> ratio;
-  ratio.reserve(m);
   for (size_t j = 0; j < m; ++j) {
     const size_t i = j * n / m;
     const float* x = &pc.xyz[3 * i];
@@ -302,25 +268,53 @@ double median_scatter_ratio(const PointIndex& index) {
     if (!probe_normal(index, x, near, dist2, normal)) continue;
     const double p[3] = {x[0], x[1], x[2]}, nn[3] = {normal.x(), normal.y(), normal.z()};
     const SurfaceFit all = fit_height(index, p, nn, 0, kNoiseProbePoints, s);
-    if (!all.ok || !(all.radius > 0)) continue;
-    if (all.residual < kExactScatter * all.radius) {
-      ratio.push_back(0);
-      continue;
-    }
-    const SurfaceFit half = fit_height(index, p, nn, 0, kNoiseProbePoints / 2, s);
-    if (half.ok) ratio.push_back(half.residual / all.residual);
+    if (all.ok && all.radius > 0) look(p, nn, all);
   }
-  if (ratio.empty()) return 0;
-  std::nth_element(ratio.begin(), ratio.begin() + ratio.size() / 2, ratio.end());
-  return ratio[ratio.size() / 2];
+}
+
+// The median of `v` (reordered); 0 when empty.
+double median(std::vector<double>& v) {
+  if (v.empty()) return 0;
+  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+  return v[v.size() / 2];
 }
 
 }  // namespace
 
-bool points_are_quiet(const PointIndex& index) { return median_scatter_ratio(index) < kShapeScatterRatio; }
+// One walk over the probes for all three figures (each was a walk of its
+// own, and encode_levels asked for them again on every control candidate).
+// The scatter: the RMS residual of each probe's fit, over its radius
+// (noisy) and in model units (noise).  The ratio (quiet): of the fit to
+// the 12 nearest points over that to the 24 nearest.  A quadric's leftover
+// from the shape grows with the neighbourhood's radius cubed, so halving
+// the points (radius / sqrt 2) leaves about a third of it (rd_bench shapes
+// without noise: 0.29-0.33); noise stays (with the dropped degrees of
+// freedom, about 0.6).  Fits with a scatter under kExactScatter of the
+// radius (planes, float rounding) count as shape.
+PointNoise point_noise(const PointIndex& index) {
+  FitScratch s;
+  std::vector<double> relative, absolute, ratio;
+  walk_probes(index, s, [&](const double p[3], const double n[3], const SurfaceFit& all) {
+    relative.push_back(all.residual / all.radius);
+    absolute.push_back(all.residual);
+    if (all.residual < kExactScatter * all.radius) {
+      ratio.push_back(0);
+      return;
+    }
+    const SurfaceFit half = fit_height(index, p, n, 0, kNoiseProbePoints / 2, s);
+    if (half.ok) ratio.push_back(half.residual / all.residual);
+  });
+  PointNoise out;
+  out.noisy = median(relative) > kQuietScatter;
+  out.quiet = median(ratio) < kShapeScatterRatio;
+  out.noise = median(absolute);
+  return out;
+}
 
-bool points_are_noisy(const PointIndex& index) { return median_scatter(index, true) > kQuietScatter; }
+bool points_are_quiet(const PointIndex& index) { return point_noise(index).quiet; }
 
-double points_noise(const PointIndex& index) { return median_scatter(index, false); }
+bool points_are_noisy(const PointIndex& index) { return point_noise(index).noisy; }
+
+double points_noise(const PointIndex& index) { return point_noise(index).noise; }
 
 }  // namespace dbss

@@ -160,6 +160,9 @@ struct LevelSampler {
 // the points (sample_displacement, the dead zone past their density).
 Result<EncodedLevels> encode_levels(const TriangleMesh& control, const PointIndex& points,
                                     const LevelEncodeOptions& options);
+// The same with the points' noise figures measured already (point_noise(points)).
+Result<EncodedLevels> encode_levels(const TriangleMesh& control, const PointIndex& points, const PointNoise& noise,
+                                    const LevelEncodeOptions& options);
 // The same loop with displacements from `sampler`.
 Result<EncodedLevels> encode_levels(const TriangleMesh& control, const LevelSampler& sampler,
                                     const LevelEncodeOptions& options);

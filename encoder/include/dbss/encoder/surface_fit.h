@@ -94,4 +94,14 @@ bool points_are_quiet(const PointIndex& points);
 // the noise's standard deviation along the surface's normal.
 double points_noise(const PointIndex& points);
 
+// The three figures above from one walk over the probe points, for a
+// caller that needs more than one (an encoding asks for them once and
+// passes them down: encode_levels).
+struct PointNoise {
+  bool noisy = false;  // points_are_noisy
+  bool quiet = true;   // points_are_quiet
+  double noise = 0;    // points_noise
+};
+PointNoise point_noise(const PointIndex& points);
+
 }  // namespace dbss
