@@ -388,6 +388,8 @@ format::Creases find_creases(TriangleMesh& mesh, const PointIndex& points, const
   std::vector<uint8_t> crease(t.edge_count(), 0);
   std::vector<std::vector<Plane>> planes(t.vertex_count);  // the sides' planes at each crease vertex
   std::vector<uint32_t> near, side[2];
+  // Read once: the edge loop below judges thousands of edges.
+  const bool trace = std::getenv("DBSS_CREASE_TRACE") != nullptr;
   // Chain edges by how their own test went: passed, or too short for it
   // (tagged for now; judged as a run below).
   enum : uint8_t { kNotChain, kPassed, kUnfit };
@@ -475,7 +477,7 @@ format::Creases find_creases(TriangleMesh& mesh, const PointIndex& points, const
         }
         trace_q = q / radius, trace_p = two / radius;
       }
-      if (std::getenv("DBSS_CREASE_TRACE"))
+      if (trace)
         std::fprintf(stderr, "crease-trace %s angle %.1f ratio %.3f quad %.4f planes %.4f (of radius) at %.4f %.4f %.4f\n", chain ? "chain" : "edge",
                      std::acos(std::min(1.0, std::abs(dot(V3(fit[0].normal), V3(fit[1].normal))))) * 180 / 3.14159265358979323846, ratio,
                      trace_q, trace_p, 0.5 * (pu[0] + pw[0]), 0.5 * (pu[1] + pw[1]), 0.5 * (pu[2] + pw[2]));
