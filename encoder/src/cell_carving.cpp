@@ -471,12 +471,12 @@ CarvingChoice choose_carving(const PointCloud& pc, const PointIndex& index, int 
     t.carving.cells = carve(pc, g, &t.carving.stats, shift);
     t.shape = carving_shape(t.carving.cells);
     return t;
-  });
+  }, max_grid);
 }
 
 int next_search_grid(int grid, int finest) { return std::min(finest, grid + std::max(1, grid / 12)); }
 
-CarvingChoice search_carving_grids(const std::vector<int>& grids, const CarvingLook& look) {
+CarvingChoice search_carving_grids(const std::vector<int>& grids, const CarvingLook& look, int max_grid) {
   using Trial = CarvingTrial;  // its carving released once it can no longer be the choice
   auto trial = [&](int g) { return look(g, 0); };
   // Grids are tried two at a time, one per core; the choice is the same as
@@ -550,7 +550,10 @@ CarvingChoice search_carving_grids(const std::vector<int>& grids, const CarvingL
   // characteristic at either placement): a handle of the surface stays
   // resolved as the cells shrink, a gap one placement straddled just so
   // need not.  Past the search's finest grid the grids go on by the same
-  // steps, carved for this test only.
+  // steps, carved for this test only, up to max_grid: a grid past it
+  // costs more memory than the search may take (a search capped at 256
+  // cells went on to 277 and 300, 1.6x the cells), so a handle that needs
+  // one is not seen to persist (the choice before it stands).
   const auto handles_persist = [&](size_t i, int64_t euler) {
     int g = grids[i];
     for (size_t j = i + 1; j <= i + 2; ++j) {
@@ -560,7 +563,8 @@ CarvingChoice search_carving_grids(const std::vector<int>& grids, const CarvingL
         g = grids[j];
         seen = tried[j].shape.euler;
       } else {
-        g = next_search_grid(g, 1024);
+        if (g >= max_grid) return false;
+        g = next_search_grid(g, max_grid);
         seen = look(g, 0).shape.euler;
       }
       if (seen > euler && look(g, 0.5).shape.euler > euler) return false;

@@ -6,7 +6,9 @@
 // 48: a genus-0 control mesh over a genus-4 part.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <map>
+#include <mutex>
 
 #include "../defect_shapes.h"
 #include "../test_data.h"
@@ -92,8 +94,16 @@ struct Look {
   size_t repaired = 0;
   double volume = 1;
 };
-CarvingChoice scripted_search(const std::vector<int>& grids, const std::map<std::pair<int, int>, Look>& table) {
+// `finest`, when given: the finest grid looked at (the search may look from
+// two threads at once).
+CarvingChoice scripted_search(const std::vector<int>& grids, const std::map<std::pair<int, int>, Look>& table,
+                              int max_grid = 1024, int* finest = nullptr) {
+  std::mutex looked;
   return search_carving_grids(grids, [&](int grid, double shift) {
+    if (finest) {
+      const std::lock_guard<std::mutex> lock(looked);
+      *finest = std::max(*finest, grid);
+    }
     const auto it = table.find({grid, shift > 0});
     // A grid not in the table looks like grid 0's entry at that shift.
     const Look l = it != table.end() ? it->second : table.at({0, shift > 0});
@@ -105,7 +115,7 @@ CarvingChoice scripted_search(const std::vector<int>& grids, const std::map<std:
     t.shape.euler = l.euler;
     t.shape.inside_volume = l.volume;
     return t;
-  });
+  }, max_grid);
 }
 }  // namespace
 
@@ -153,4 +163,32 @@ TEST_CASE("grid search: a later tear is measured from the moved carving kept") {
   CHECK(c.stats.grid == 11);
   CHECK(c.stats.shift == 0.5);
   CHECK(c.leaking_grid == 12);
+}
+
+// The grids past the last, carved only to see a handle persist, stop at the
+// search's cap (choose_carving's max_grid, which bounds the carving's
+// memory); the search capped at 256 cells went on to 277 and 300.  Grid 11
+// moved shows a handle that grids 12 and 13 show too: kept when the cap
+// allows 13, not seen to persist when it stops at 12 (grid 10 stands, 11
+// is the leak; at a cap of 11 likewise), and nothing past the cap is
+// carved either way.
+TEST_CASE("grid search: no grid past the cap is carved to see a handle persist") {
+  const std::map<std::pair<int, int>, Look> table{
+      {{0, 0}, {0}},      {{0, 1}, {0}},      {{10, 0}, {0}},     {{11, 0}, {-1, 5}}, {{11, 1}, {-1}},
+      {{12, 0}, {0, 5}},  {{12, 1}, {-1}},    {{13, 0}, {-2, 5}}, {{13, 1}, {0, 5}}};
+  // The cap, then the finest grid looked at and the choice.
+  struct Case {
+    int cap, finest, grid;
+    double shift;
+    int leaking;
+  };
+  for (const Case& c : {Case{12, 12, 10, 0, 11}, Case{13, 13, 11, 0.5, 0}, Case{11, 11, 10, 0, 11}}) {
+    INFO("cap " << c.cap);
+    int finest = 0;
+    const CarvingChoice got = scripted_search({10, 11}, table, c.cap, &finest);
+    CHECK(finest == c.finest);
+    CHECK(got.stats.grid == c.grid);
+    CHECK(got.stats.shift == c.shift);
+    CHECK(got.leaking_grid == c.leaking);
+  }
 }

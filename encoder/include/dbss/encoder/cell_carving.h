@@ -72,13 +72,15 @@ CarvingChoice choose_carving(const PointCloud& points, const PointIndex& index, 
 // and carving_shape at that grid and shift; tests give scripted ones):
 // grids in increasing order, each looked at unshifted, some also at shift
 // 0.5, and grids past the last by next_search_grid when a handle must be
-// seen to persist.  `look` may be called from two threads at once.
+// seen to persist, none finer than `max_grid` (choose_carving's cap; a
+// handle that would need one is not kept).  `look` may be called from two
+// threads at once.
 struct CarvingTrial {
   CarvingChoice carving;  // stats.grid, stats.shift, stats.repaired and stats.occupied are read
   CarvingShape shape;
 };
 using CarvingLook = std::function<CarvingTrial(int grid, double shift)>;
-CarvingChoice search_carving_grids(const std::vector<int>& grids, const CarvingLook& look);
+CarvingChoice search_carving_grids(const std::vector<int>& grids, const CarvingLook& look, int max_grid = 1024);
 // The search's step: grid + grid / 12 (at least 1), at most `finest`.
 int next_search_grid(int grid, int finest);
 
