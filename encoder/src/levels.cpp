@@ -332,6 +332,9 @@ Result<EncodedLevels> encode_levels(const TriangleMesh& control, const LevelSamp
         std::vector<uint8_t> on_rim(odd, 0);
         for (uint32_t e : boundary_odds) on_rim[e] = 1;
         const std::vector<int32_t> kept = level.q;
+        // The trial's finer level goes before r builds its own: both at
+        // once doubled the loop's peak memory on a holed mesh.
+        { const LevelRefiner dropped_trial = std::move(trial).value(); }
         if (sampler.boundary_mode) sampler.boundary_mode(false);
         const OddChooser again = [&](uint32_t e, const double p[3], const double n[3], const float* a, const float* b) {
           return on_rim[e] ? choose(e, p, n, a, b) : kept[e];
