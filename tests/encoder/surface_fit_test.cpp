@@ -174,3 +174,29 @@ TEST_CASE("surface fit: mild noise, below points_are_noisy, is told from a clean
   INFO("narrow RMS " << narrow_rms << ", tight RMS " << tight_rms);
   CHECK(narrow_rms < 0.9 * tight_rms);
 }
+
+TEST_CASE("surface fit: the noise figures from one probe walk") {
+  // point_noise walks the probes once for all three figures: on the unit
+  // sphere with noise of 3e-3 along the radius (about 4% of the 24-point
+  // neighbourhood's radius) the cloud is noisy, not quiet, and the noise
+  // is about the noise's own deviation (the fits' RMS scatter, less the
+  // degrees of freedom the fit takes); without noise, quiet, not noisy and
+  // near 0.  Mixing up the figures (the scatter over the radius for the
+  // noise, or the ratio's median for the scatter's) fails these bounds.
+  const double sigma = 3e-3;
+  const PointCloud noisy = noisy_sphere(20000, sigma, 5), clean = noisy_sphere(20000, 0, 5);
+  const PointIndex noisy_index(noisy), clean_index(clean);
+  const PointNoise n = point_noise(noisy_index), c = point_noise(clean_index);
+  INFO("noisy: noise " << n.noise << "; clean: noise " << c.noise);
+  CHECK(n.noisy);
+  CHECK_FALSE(n.quiet);
+  CHECK(n.noise > 0.6 * sigma);
+  CHECK(n.noise < 1.2 * sigma);
+  CHECK_FALSE(c.noisy);
+  CHECK(c.quiet);
+  CHECK(c.noise < 0.05 * sigma);
+  // The one-figure calls agree with it.
+  CHECK(points_are_noisy(noisy_index) == n.noisy);
+  CHECK(points_are_quiet(noisy_index) == n.quiet);
+  CHECK(points_noise(noisy_index) == n.noise);
+}
