@@ -8,7 +8,8 @@
 //   level_rise_probe [--seeds 1-7] [--levels 5] [--points 3000] [--noise 0]
 //                    [--shapes torus,double torus] [--truth 20000] [--smoothing 0]
 // With PROBE_VERTICES set, also the mean distance to the truth of the
-// vertices each level added (level 0: the control vertices).
+// vertices each level added (level 0: the control vertices), and in
+// brackets their mean signed distance (+: outside the shape).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -104,9 +105,13 @@ int main(int argc, char** argv) {
         size_t from = 0;
         for (uint32_t l = 0; l <= enc.level_count; ++l) {
           const std::vector<float>& x = enc.levels.positions[l];
-          double sum = 0;
-          for (size_t v = from; v < x.size() / 3; ++v) sum += std::abs(s.sdf(x[3 * v], x[3 * v + 1], x[3 * v + 2]));
-          std::printf(" %.2e", sum / static_cast<double>(x.size() / 3 - from) / enc.diagonal);
+          double sum = 0, signed_sum = 0;
+          for (size_t v = from; v < x.size() / 3; ++v) {
+            const double d = s.sdf(x[3 * v], x[3 * v + 1], x[3 * v + 2]);
+            sum += std::abs(d), signed_sum += d;
+          }
+          const double count = static_cast<double>(x.size() / 3 - from) * enc.diagonal;
+          std::printf(" %.2e (%+.1e)", sum / count, signed_sum / count);
           from = x.size() / 3;
         }
       }

@@ -62,6 +62,35 @@ void set_extent_and_step(Encoding& e, std::span<const float> xyz, const EncodeOp
   }
 }
 
+// `meta` quantization: on a noisy cloud the levels round at a step from the
+// points' noise (levels.cpp kNoiseStep), coarser than the error target's;
+// the header's error target stays the one asked for (spec: informative),
+// and this says what the levels were rounded at.  Empty when every level
+// has the target's step (clean clouds: their files are unchanged).
+namespace {
+std::string quantization_note(const Encoding& e) {
+  const std::vector<format::Level>& levels = e.contents.levels;
+  if (levels.empty() || e.levels.step_noise <= 0) return {};
+  float lo = levels.front().step, hi = lo;
+  for (const format::Level& l : levels) lo = std::min(lo, l.step), hi = std::max(hi, l.step);
+  if (lo == e.step && hi == e.step) return {};
+  char text[320];
+  const double d = e.diagonal > 0 ? e.diagonal : 1.0;
+  if (lo == hi)
+    std::snprintf(text, sizeof text,
+                  "levels 1-%zu rounded at step %.6g (error up to %.3g of the diagonal), not the error target's %.6g "
+                  "(%.3g): a quarter of the points' noise (%.3g of the diagonal)",
+                  levels.size(), double{lo}, lo / (2 * d), double{e.step}, e.error, e.levels.step_noise / d);
+  else
+    std::snprintf(text, sizeof text,
+                  "levels 1-%zu rounded at steps %.6g to %.6g (error up to %.3g to %.3g of the diagonal), not the error "
+                  "target's %.6g (%.3g): from the points' noise (%.3g of the diagonal)",
+                  levels.size(), double{lo}, double{hi}, lo / (2 * d), hi / (2 * d), double{e.step}, e.error,
+                  e.levels.step_noise / d);
+  return text;
+}
+}  // namespace
+
 Status control_mesh_through_draco(Encoding& e, const TriangleMesh* placed) {
   auto draco = encode_control_mesh(placed ? *placed : e.stages.control, {e.control_bits, 0});
   if (!draco.ok()) return draco.status();
@@ -468,6 +497,7 @@ Result<Encoding> encode_points(const PointIndex& input_index, const EncodeOption
   if (!o.source_name.empty()) c.metadata.push_back({"source", o.source_name});
   c.metadata.push_back({"surface", e.stages.surface_reason + tubes_joined(e.tubes)});
   if (!e.control_choice.empty()) c.metadata.push_back({"control.choice", e.control_choice});
+  if (std::string q = quantization_note(e); !q.empty()) c.metadata.push_back({"quantization", q});
   if (e.outliers.points_in != e.outliers.kept())
     c.metadata.push_back({"outliers", std::to_string(e.outliers.duplicates) + " duplicates, " +
                                           std::to_string(e.outliers.isolated) + " isolated points and " +

@@ -160,13 +160,18 @@ Result<EncodedLevels> encode_levels(const TriangleMesh& control, const PointInde
   };
   if (o.smooth_noise && widen) sampler.smoothing = kNeighbourWeight;
   // On noise, every level's step is at least kNoiseStep of the noise.
+  double step_noise = 0;
   if (widen) {
+    step_noise = noise.noise;
     const float noisy = std::max(o.step, static_cast<float>(kNoiseStep * noise.noise));
     sampler.step = [noisy](uint32_t, size_t, size_t) { return noisy; };
+    if (!(noisy > o.step)) step_noise = 0;  // the options' step after all
   }
   const size_t point_count = points.points().size();
   sampler.dead_zone = [point_count](size_t odd, size_t even) { return dead_zone_steps(odd, point_count, even); };
-  return encode_levels(control, sampler, o);
+  auto out = encode_levels(control, sampler, o);
+  if (out.ok()) out.value().step_noise = step_noise;
+  return out;
 }
 
 Result<EncodedLevels> encode_levels(const TriangleMesh& control, const LevelSampler& sampler,

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <random>
 #include <string>
 #include <utility>
@@ -165,15 +166,16 @@ TEST_CASE("the control mesh chosen by rate-distortion is never worse against the
 }
 
 // The torus scanned with 8,000 points and Gaussian noise of 1e-3 of the
-// diagonal per coordinate (seed 11): the noisy cloud of the tests below.
-static Scan noisy_torus_scan(const test::Shape& s) {
+// diagonal per coordinate (seed 11; `noise` for another): the noisy cloud of
+// the tests below.
+static Scan noisy_torus_scan(const test::Shape& s, double noise = 1e-3) {
   Scan scan = scan_of(s, 8000);
   PointCloud& pc = scan.points;
   double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
   for (size_t i = 0; i < pc.xyz.size(); ++i) lo[i % 3] = std::min(lo[i % 3], double{pc.xyz[i]}), hi[i % 3] = std::max(hi[i % 3], double{pc.xyz[i]});
   const double diagonal = std::sqrt(std::pow(hi[0] - lo[0], 2) + std::pow(hi[1] - lo[1], 2) + std::pow(hi[2] - lo[2], 2));
   std::mt19937 rng(11);
-  std::normal_distribution<double> normal(0.0, 1e-3 * diagonal);
+  std::normal_distribution<double> normal(0.0, noise * diagonal);
   for (float& x : pc.xyz) x = static_cast<float>(x + normal(rng));
   return scan;
 }
@@ -258,4 +260,41 @@ TEST_CASE("a noisy cloud: the level before the crossing one is smoothed too, clo
                    << error_off << " as sampled");
   CHECK(error_on < error_off);
   CHECK(prefix_bytes(a, 2) < prefix_bytes(b, 2));
+}
+
+TEST_CASE("a noisy cloud's meta says the step its levels were rounded at, a clean one's says nothing new") {
+  // A noisy cloud's levels round at a step from the points' noise
+  // (levels.cpp kNoiseStep), coarser than the error target's; the header's
+  // error target stays the one asked for, so meta `quantization` must name
+  // the step the levels hold.  Before, nothing in the file said it.  (At
+  // noise 1e-3 this torus's noise step is under the target's; at 2e-3 over.)
+  const test::Shape s = test::genus_shapes()[1];  // torus
+  const auto quantization = [](const Encoding& e) -> const std::string* {
+    for (const auto& m : e.contents.metadata)
+      if (m.key == "quantization") return &m.value;
+    return nullptr;
+  };
+  EncodeOptions o;
+  o.levels = 2;
+  auto noisy = encode_points(noisy_torus_scan(s, 2e-3).points, o);
+  REQUIRE(noisy.ok());
+  const Encoding& a = noisy.value();
+  REQUIRE(a.contents.levels.size() == 2);
+  const float used = a.contents.levels[0].step;
+  CHECK(a.contents.levels[1].step == used);
+  REQUIRE(used > a.step);  // the premise: the noise's step is the coarser
+  const std::string* note = quantization(a);
+  REQUIRE(note != nullptr);
+  INFO("quantization: " << *note << "; step " << used << ", the target's " << a.step);
+  const size_t at = note->find("step ");
+  REQUIRE(at != std::string::npos);
+  const double said = std::strtod(note->c_str() + at + 5, nullptr);
+  CHECK(std::abs(said - used) <= 1e-5 * used);
+  CHECK(note->find("noise") != std::string::npos);
+  CHECK(a.contents.header.error_target == static_cast<float>(o.error));  // the header: the target asked for
+
+  auto clean = encode_points(scan_of(s, 8000).points, o);
+  REQUIRE(clean.ok());
+  for (const format::Level& l : clean.value().contents.levels) CHECK(l.step == clean.value().step);
+  CHECK(quantization(clean.value()) == nullptr);
 }

@@ -108,6 +108,11 @@ struct EncodedLevels {
   std::vector<LevelStats> stats;
   std::vector<std::vector<float>> positions;  // positions[l]: the reconstruction of level l (0 = control)
   std::vector<std::vector<uint32_t>> triangles;
+  // The points' noise (points_noise, model units) when a noisy cloud's
+  // levels took a step from it (kNoiseStep) instead of the options' step;
+  // 0 otherwise.  For `meta` (quantization): the header's error target is
+  // the one asked for, not the rounding such a file has.
+  double step_noise = 0;
 };
 
 // Sets level.coding to the payload layout that makes the smallest LEVL chunk
