@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "dbss/encoder/crease_lines.h"
+#include "dbss/encoder/facet_hit.h"
 #include "dbss/encoder/point_distances.h"
 
 namespace dbss {
@@ -396,6 +397,12 @@ Sample sample_displacement(const PointIndex& index, const double pd[3], const do
                                       tight && !widen && original_sides == nullptr);
       if (f.ok && (std::abs(f.height) <= half_length || std::abs(d) > half_length))
         d = f.height, out.fitted = true, out.spread = f.spread;
+      // A clean cloud on a flat facet: the facet, not the fit's rounding of
+      // the bends beside it (facet_hit.h).
+      double t = 0;
+      if (out.fitted && tight && !widen && original_sides == nullptr && facet_hit(index, pd, nd, d, f.radius, t) &&
+          std::abs(t) <= half_length)
+        d = t;
     }
     out.clamped = std::abs(d) > half_length;
     out.distance = std::clamp(d, -half_length, half_length);
