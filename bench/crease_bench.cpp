@@ -46,6 +46,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <ctime>
 #include <filesystem>
 #include <random>
 #include <string>
@@ -176,6 +177,8 @@ struct Run {
   std::vector<dbss::LevelStats> levels;
   std::string choice;
   TagCheck tags;
+  std::vector<uint8_t> file;  // the .dbss bytes, to say whether creases on wrote the same file as off
+  double cpu = 0;             // encode_points' CPU seconds (all threads: std::clock)
 };
 
 }  // namespace
@@ -279,20 +282,32 @@ int main(int argc, char** argv) {
       if (const char* r = std::getenv("CREASE_BENCH_SMOOTH")) eo.creases.smooth_ratio = std::atof(r);
       // CREASE_BENCH_RUNS=R: CreaseOptions::chain_run_ratio (0: short chain runs kept untested, as before it).
       if (const char* r = std::getenv("CREASE_BENCH_RUNS")) eo.creases.chain_run_ratio = std::atof(r);
+      // CREASE_BENCH_MINSHARE=S: CreaseOptions::min_share (0: any tag kept, as before it).
+      if (const char* r = std::getenv("CREASE_BENCH_MINSHARE")) eo.creases.min_share = std::atof(r);
       eo.control.shape.enabled = shaping;
       eo.creases.split = split;
       eo.choose_control = !fixed_control;
+      const std::clock_t c0 = std::clock();
       auto e = dbss::encode_points(pc, eo);
+      runs[on].cpu = static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC;
       if (!e.ok()) return std::fprintf(stderr, "crease_bench: %s: %s\n", shape.c_str(), e.status().to_string().c_str()), 1;
       const dbss::Encoding& enc = e.value();
       runs[on].stats = enc.creases;
+      runs[on].file = enc.bytes;
       runs[on].length = crease_length(enc.control, enc.contents.creases);
       runs[on].tags = check_tags(tagged_segments(enc.control, enc.contents.creases), true_features, 0.005 * diag);
       runs[on].levels = enc.levels.stats;
       runs[on].choice = enc.control_choice;
       for (const auto& t : enc.toc)
         if (t.type == dbss::format::kCrea) runs[on].tag_bytes = t.length + 12 + 16;  // data, frame, INDX entry
-      for (uint32_t l = 0; l <= enc.level_count; ++l) {
+      // The same file as off: the same levels, so the same figures (and
+      // half the measuring on the smooth shapes).
+      const bool same_as_off = on == 1 && !on_only && runs[1].file == runs[0].file && std::getenv("CREASE_BENCH_DUMP") == nullptr;
+      if (same_as_off) {
+        runs[1].bytes = runs[0].bytes, runs[1].mean = runs[0].mean, runs[1].hausdorff = runs[0].hausdorff;
+        runs[1].p99 = runs[0].p99, runs[1].p999 = runs[0].p999;
+      }
+      for (uint32_t l = 0; l <= enc.level_count && !same_as_off; ++l) {
         const dbss::TriangleMesh m{enc.levels.positions[l], enc.levels.triangles[l]};
         if (const char* dump = std::getenv("CREASE_BENCH_DUMP")) {
           const std::string path = std::string(dump) + "/" + shape + (on ? "-on-" : "-off-") + std::to_string(l) + ".off";
@@ -353,8 +368,15 @@ int main(int argc, char** argv) {
                 "diagonal); feature length found %.3f, true %.3f (diagonals); tags %zu bytes\n\n",
                 r.stats.creases, r.stats.edges_tested, r.stats.gaps_closed, r.stats.corners, r.stats.darts, r.stats.snapped, r.stats.max_snap / diag,
                 r.length / diag, true_length / diag, r.tag_bytes);
-    std::printf("tags against the true features: %zu true, %zu false edges, missed %.3f of %.3f (diagonals), %zu smooth-rejected, %zu untagged in lone short chain runs\n\n",
-                r.tags.truly, r.tags.falsely, r.tags.missed / diag, r.tags.total / diag, r.stats.smooth_rejected, r.stats.chain_runs_dropped);
+    std::printf("tags against the true features: %zu true, %zu false edges, missed %.3f of %.3f (diagonals), %zu smooth-rejected, %zu untagged in lone short chain runs, %zu untagged as too few\n\n",
+                r.tags.truly, r.tags.falsely, r.tags.missed / diag, r.tags.total / diag, r.stats.smooth_rejected, r.stats.chain_runs_dropped,
+                r.stats.too_few_dropped);
+    // The file on against off (smooth shapes: a mesh left without tags is
+    // given back unaligned, so the same bytes), and what detection costs.
+    if (!on_only)
+      std::printf("file on %s off (%zu / %zu bytes); encode CPU off %.2f s, on %.2f s (%+.1f%%)\n\n",
+                  runs[0].file == runs[1].file ? "identical to" : "differs from", runs[1].file.size(), runs[0].file.size(), runs[0].cpu,
+                  runs[1].cpu, 100 * (runs[1].cpu / std::max(1e-9, runs[0].cpu) - 1));
     std::printf("sampler, levels 1..%u (on): clamped", levels);
     for (const auto& ls : r.levels) std::printf(" %zu", ls.clamped);
     std::printf("; nearest-point fallback");

@@ -61,7 +61,7 @@ int run_compare(const std::vector<std::string_view>& args) {
   bool json = false;
   CompareOptions co;
   EncodeOptions options;
-  options.levels = kAutoLevels;  // the command's default: as many levels as the points support
+  set_command_defaults(options);  // as many levels as the points support, creases on
   for (size_t i = 0; i < args.size(); ++i) {
     const std::string_view a = args[i];
     std::string error;

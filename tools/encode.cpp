@@ -77,7 +77,7 @@ int run_encode(const std::vector<std::string_view>& args) {
   bool strict = false, report = true;
   std::string input_mode;  // "", "points" or "mesh"
   EncodeOptions options;
-  options.levels = kAutoLevels;  // the command's default: as many levels as the points support
+  set_command_defaults(options);  // as many levels as the points support, creases on
   for (size_t i = 0; i < args.size(); ++i) {
     const std::string_view a = args[i];
     std::string error;
@@ -145,7 +145,7 @@ int run_encode(const std::vector<std::string_view>& args) {
       // has nothing more to check either).
       for (const std::string_view a : args)
         if (a == "--strict" || a == "--surface" || a == "--grid" || a == "--grid-shift" || a == "--keep-outliers" ||
-            a == "--crease-angle")
+            a == "--crease-angle" || a == "--no-creases")
           std::fprintf(stderr, "dbss encode: %s: note: %s is for point input; ignored for a mesh (--input points to reconstruct from its vertices)\n",
                        input.c_str(), std::string(a).c_str());
       const TriangleMesh mesh{std::move(geometry.value().points.xyz), std::move(geometry.value().triangles)};

@@ -40,16 +40,29 @@ const char* const kEncodeOptionsHelp =
     "                         clusters under 2% of the points are dropped)\n"
     "  --crease-angle DEG     tag control edges as creases where the points'\n"
     "                         planes on either side meet at more than DEG\n"
-    "                         degrees, 1..179, or off (the default; tags make\n"
-    "                         a version 1.1 file)\n";
+    "                         degrees and one smooth sheet cannot follow them,\n"
+    "                         1..179, or off (default 30; point input only):\n"
+    "                         the sharp edges of machined parts stay sharp;\n"
+    "                         tags make a version 1.1 file, and a surface with\n"
+    "                         none found gets the file creases off writes\n"
+    "  --no-creases           no crease tags: --crease-angle off\n";
 static_assert(format::kMaxLevelsInPractice == 8, "--levels' help above says 0..8");
 
+
+void set_command_defaults(EncodeOptions& o) {
+  o.levels = kAutoLevels;
+  o.creases.angle_degrees = kCommandCreaseAngle;
+}
 
 OptionParse parse_encode_option(const std::vector<std::string_view>& args, size_t& i, EncodeOptions& o,
                                 std::string& error) {
   const std::string_view a = args[i];
   if (a == "--keep-outliers") {
     o.outliers.enabled = false;
+    return OptionParse::ok;
+  }
+  if (a == "--no-creases") {
+    o.creases.angle_degrees = 0;
     return OptionParse::ok;
   }
   const bool known = a == "--grid" || a == "--grid-shift" || a == "--control-faces" || a == "--control-bits" || a == "--levels" ||

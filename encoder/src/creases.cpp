@@ -639,6 +639,12 @@ format::Creases find_creases(TriangleMesh& mesh, const PointIndex& points, const
   for (uint32_t v : corners)
     if (v < t.vertex_count && count[v] >= 1) at_corner[v] = 1;
   for (uint32_t v = 0; v < t.vertex_count; ++v) st.darts += count[v] == 1 && !at_corner[v];
+  // Too few to pay for a tagged file (CreaseOptions::min_share): stray
+  // tags on a smooth shape, or a feature too small to matter.
+  if (st.creases > 0 && o.min_share > 0 && static_cast<double>(st.creases) < o.min_share * static_cast<double>(t.edge_count())) {
+    st.too_few_dropped = st.creases;
+    st.creases = 0, st.corners = 0, st.darts = 0;
+  }
   if (st.creases == 0) {
     mesh.positions = unaligned, mesh.triangles = unaligned_triangles;
     if (stats) *stats = st;

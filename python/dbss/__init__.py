@@ -10,8 +10,10 @@ bytes and the decoded floats are those of the command line.
 
 Encode options are the flags of ``dbss encode`` as keywords (``levels``,
 ``error``, ``step``, ``grid``, ``grid_shift``, ``control_faces``, ``control_bits``,
-``effort``, ``surface``, ``keep_outliers``, ``strict``), plus
-``source_name`` (the `meta` chunk's "source") and ``threads``.  They are
+``effort``, ``surface``, ``keep_outliers``, ``crease_angle``, ``strict``), plus
+``source_name`` (the `meta` chunk's "source") and ``threads``.  Creases
+are on by default, as on the command line (``crease_angle=30``);
+``crease_angle="off"`` turns them off.  They are
 read by the command's own parser, so bad values raise ValueError with its
 message; an unknown keyword raises TypeError.  Errors from the codec raise a
 subclass of :class:`dbss.Error` carrying the code and byte offset.

@@ -40,6 +40,7 @@ ENCODE_FLAGS = [
     ("--grid", "grid", True), ("--grid-shift", "grid_shift", True), ("--control-faces", "control_faces", True),
     ("--control-bits", "control_bits", True), ("--effort", "effort", True),
     ("--surface", "surface", True), ("--keep-outliers", "keep_outliers", False),
+    ("--crease-angle", "crease_angle", True),
     ("--strict", "strict", False),
 ]
 

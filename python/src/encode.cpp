@@ -35,13 +35,14 @@ struct Settings {
 
 // Keyword arguments as `dbss encode` flags: levels=2 is --levels 2,
 // control_faces=200 is --control-faces 200, keep_outliers=True is
-// --keep-outliers.  None leaves the default.
+// --keep-outliers, crease_angle="off" is --crease-angle off.  None leaves
+// the default.
 Settings settings_from(const py::dict& kwargs, const char* fn) {
   Settings s;
-  s.options.levels = kAutoLevels;  // the command's default
+  tools::set_command_defaults(s.options);  // the command's defaults: levels auto, creases on
   s.options.encoder_version = DBSS_VERSION;
   static const std::vector<std::string> flags = {"levels", "error", "step", "grid", "grid_shift", "control_faces",
-                                                 "control_bits", "effort", "surface"};
+                                                 "control_bits", "effort", "surface", "crease_angle"};
   std::vector<std::string> args, keys;
   for (auto item : kwargs) {
     const std::string key = py::str(item.first);

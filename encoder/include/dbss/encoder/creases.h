@@ -22,6 +22,10 @@ struct CreaseOptions {
   // 5-16, knot1 1-4), and a tagged file also pays the CREA bitmap (about
   // 900 bytes) and keeps the step's Draco bits, not rounded along the
   // surface: level 3 11-51% more bytes there (bunny00 40% more error).
+  // The library keeps it off; the commands and the Python binding turn it
+  // on at 30 degrees (tools/encode_options.h, kCommandCreaseAngle), since
+  // the quadric test, the lone-run test and min_share leave smooth shapes
+  // with no tag (thirteenth session).
   double angle_degrees = 0;
   // Each side's RMS distance from its plane, relative to the neighbourhood's
   // radius, must stay under this: a crease has flat sides near it, a smooth
@@ -145,6 +149,16 @@ struct CreaseOptions {
   // sides bend too (the fandisk's short runs 2.7-7.5); bunny00's lone runs,
   // seeds 1-3, measured 0.4-2.05 (bench/crease_bench.md, twelfth session).
   double chain_run_ratio = 2.5;
+  // Tags are kept only when the crease edges are at least this share of
+  // the control mesh's edges; fewer, and the mesh is given back unaligned
+  // with no tag (the file creases off writes).  A tagged file gives up
+  // rounding the control mesh along the surface and pays the CREA bitmap
+  // (about 700 bytes) whatever the tags' number: with one or two tagged
+  // edges (bunny00, camel, cow at 30,000 points) level 3 cost 16-17% more
+  // bytes, for up to 28% more error.  Machined parts measured 2-12% (rotor
+  // 0.9%), the smooth shapes' stray tags 0.03-0.05%
+  // (bench/crease_bench.md, thirteenth session).  <= 0: any tag is kept.
+  double min_share = 0.005;
 };
 
 struct CreaseStats {
@@ -163,6 +177,7 @@ struct CreaseStats {
   size_t chain_runs_dropped = 0;  // chain edges untagged by the lone-run test (CreaseOptions::chain_run_ratio)
   size_t flat_corners = 0;  // smooth vertices of flat, irregular fans tagged corner (CreaseOptions::flat_corners)
   size_t flat_corners_dropped = 0;  // of those chosen, untagged by the check (CreaseOptions::flat_fan_check)
+  size_t too_few_dropped = 0;  // crease edges found but untagged, too few to pay for a tagged file (CreaseOptions::min_share)
 };
 
 // First aligns `mesh` to the feature lines (align_to_features: vertices
