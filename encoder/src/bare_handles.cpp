@@ -79,7 +79,7 @@ int64_t kept_genus(const std::vector<uint32_t>& twin, const std::vector<uint8_t>
 
 }  // namespace
 
-std::vector<float> bare_ratios(const TriangleMesh& m, const PointIndex& index) {
+std::vector<float> bare_ratios(const TriangleMesh& m, const PointIndex& index, const PointIndex* own) {
   const PointCloud& pc = index.points();
   std::vector<float> nn(pc.size(), -1.0f);  // each point's nearest-neighbour distance, as needed
   const auto spacing_of = [&](uint32_t p) {
@@ -100,7 +100,14 @@ std::vector<float> bare_ratios(const TriangleMesh& m, const PointIndex& index) {
     float s[kLocalPoints];
     for (size_t i = 0; i < k; ++i) s[i] = std::max(floor, spacing_of(id[i]));
     std::nth_element(s, s + k / 2, s + k);
-    ratio[v] = s[k / 2] > 0 ? std::sqrt(d2[0]) / s[k / 2] : 0.0f;
+    float near = std::sqrt(d2[0]);
+    if (own && own->points().size() > 0) {
+      const uint32_t o = own->nearest(&m.positions[3 * v]);
+      float o2 = 0;
+      for (int a = 0; a < 3; ++a) o2 += std::pow(m.positions[3 * v + a] - own->points().xyz[3 * size_t{o} + a], 2.0f);
+      near = std::min(near, std::sqrt(o2));
+    }
+    ratio[v] = s[k / 2] > 0 ? near / s[k / 2] : 0.0f;
   }
   return ratio;
 }

@@ -233,6 +233,7 @@ bool build_sheet(ControlMeshStages& s, const PointIndex& index, const ControlMes
   s.bridged_area = close ? hole_share : 0;
   s.doubtful_caps = close ? fill.doubtful_pairs : 0;
   s.bridged_tubes = close ? fill.bridges : 0;
+  if (close) s.bridged_tube_triangles = fill.bridge_triangles;
   s.wrap_stats = wrap;
   s.wrapped = close ? std::move(filled) : std::move(sheet);
   return true;

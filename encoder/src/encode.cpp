@@ -356,6 +356,7 @@ std::unique_ptr<PointIndex> join_cut_tubes(Encoding& e, const PointIndex& index,
     if (!surface_joins(control, rims[a], rims[b])) return refused();
   e.tubes.tubes = tube.tubes;
   e.tubes.points = tube.added;
+  e.tubes.at.assign(joined.xyz.end() - static_cast<std::ptrdiff_t>(3 * tube.added), joined.xyz.end());
   e.tubes.area_share = std::min(1.0, tube.area / std::max(1e-300, mesh_area(control)));
   e.stages = std::move(stages).value();
   return joined_index;

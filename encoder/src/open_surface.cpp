@@ -413,8 +413,11 @@ HoleFill fill_holes(TriangleMesh& m, double edge, double max_perimeter, bool bri
   std::vector<uint32_t> tube_vertices;
   if (bridge) {
     const size_t before = loops.size();
+    const size_t first = m.triangles.size();
     out.bridges = bridge_facing_loops(m, loops, edge, tube_vertices, &out.doubtful_pairs);
     out.loops += before - loops.size();
+    for (size_t i = first; i < m.triangles.size(); ++i)
+      for (int a = 0; a < 3; ++a) out.bridge_triangles.push_back(m.positions[3 * size_t{m.triangles[i]} + a]);
   }
   for (const std::vector<uint32_t>& loop : loops) {
     const size_t n = loop.size();

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <memory>
 #include <unordered_map>
 #include <vector>
 
@@ -119,20 +120,44 @@ TriangleMesh split_at_midpoints(const TriangleMesh& m) {
 // and leaves gap tunnels bare only at 3 unwarned.
 constexpr float kBareHandleReach = 3.5f;
 
+// Where the encoder built surface itself, as points `spacing` apart: the
+// points a joined tube added, and the bridged tubes' triangles sampled.
+PointCloud own_tube_points(const Encoding& e, double spacing) {
+  PointCloud own;
+  own.xyz = e.tubes.at;
+  const std::vector<float>& t = e.stages.bridged_tube_triangles;
+  for (size_t i = 0; i + 9 <= t.size(); i += 9) {
+    const float *a = &t[i], *b = &t[i + 3], *c = &t[i + 6];
+    double longest = 0;
+    for (const auto& [p, q] : {std::pair{a, b}, std::pair{b, c}, std::pair{c, a}})
+      longest = std::max(longest, std::hypot(double{p[0]} - q[0], double{p[1]} - q[1], double{p[2]} - q[2]));
+    const int n = spacing > 0 ? std::clamp(static_cast<int>(std::ceil(longest / spacing)), 1, 64) : 1;
+    for (int u = 0; u <= n; ++u)
+      for (int v = 0; u + v <= n; ++v)
+        for (int k = 0; k < 3; ++k)
+          own.xyz.push_back(static_cast<float>((double{a[k]} * (n - u - v) + double{b[k]} * u + double{c[k]} * v) / n));
+  }
+  return own;
+}
+
 // Handles of a closed `test` surface that run through bare area only
-// (bare_handles.h), less the ones the encoder built there itself (tubes
-// joined across a cut, tubes the bridging stage built between facing
-// holes): fills c.bare_handles, c.bare_handle_reach, c.bare_handle_at.
+// (bare_handles.h), the ones the encoder built itself aside (tubes joined
+// across a cut, tubes the bridging stage built between facing holes): their
+// surface counts as supported where it was built (own_tube_points), so a
+// tube of the encoder's that is not bare cannot hide a bare handle
+// elsewhere, as subtracting their count did.  Fills c.bare_handles,
+// c.bare_handle_reach, c.bare_handle_at.
 void check_bare_handles(ScanCheck& c, const Encoding& e, const TriangleMesh& test, const PointIndex& index) {
-  const std::vector<float> ratios = bare_ratios(test, index);
-  const uint32_t own = static_cast<uint32_t>(e.tubes.tubes + e.stages.bridged_tubes);
+  const PointCloud own = own_tube_points(e, c.spacing);
+  const std::unique_ptr<PointIndex> own_index = own.size() > 0 ? std::make_unique<PointIndex>(own) : nullptr;
+  const std::vector<float> ratios = bare_ratios(test, index, own_index.get());
   const std::vector<float> ladder{2.0f, 2.5f, 3.0f, kBareHandleReach, 4.0f, 5.0f, 6.0f, 8.0f, 12.0f};
   const std::vector<uint32_t> bare = bare_handles_at(test, ratios, ladder);
   for (size_t r = 0; r < ladder.size(); ++r)
-    if (bare[r] > own) c.bare_handle_reach = ladder[r];
-  if (bare[3] <= own) return;
+    if (bare[r] > 0) c.bare_handle_reach = ladder[r];
+  if (bare[3] == 0) return;
   std::vector<uint32_t> at;
-  c.bare_handles = bare_handles(test, ratios, kBareHandleReach, &at) - own;
+  c.bare_handles = bare_handles(test, ratios, kBareHandleReach, &at);
   for (uint32_t v : at) c.bare_handle_at.push_back({test.positions[3 * v], test.positions[3 * v + 1], test.positions[3 * v + 2]});
 }
 

@@ -101,3 +101,39 @@ TEST_CASE("bare handles: clean complete tori are not warned") {
       CHECK_FALSE(warned(e.value(), "bare_handle"));
     }
 }
+
+// The encoder's own tubes (joined across a cut, bridged between facing
+// holes) are told from bare handles by where they were built, not by their
+// number: subtracting a count let tubes elsewhere hide as many bare handles
+// (the 3-gap plate with three tubes recorded away from it was unwarned);
+// tubes recorded on the gaps' tunnels themselves are not bare.
+TEST_CASE("bare handles: the encoder's own tubes are excluded by place not by count") {
+  constexpr double kHalf = 0.1, kRadius = 0.18;
+  const test::Sdf solid = [](double x, double y, double z) { return test::box_sdf(x, y, z, 0, 0, 0, 1, 0.7, kHalf); };
+  const PointCloud gaps = test::with_plate_gaps(test::sample_sdf(solid, -1.1, 1.1, 8000, 5), 3, kRadius);
+  EncodeOptions o;
+  o.levels = 1;
+  auto g = encode_points(gaps, o);
+  REQUIRE(g.ok());
+  Encoding e = std::move(g).value();
+  const PointIndex index(e.points);
+  REQUIRE(e.tubes.tubes == 0);
+  const uint32_t bare = e.check.bare_handles;
+  REQUIRE(bare >= 1);
+  // Three tubes of the encoder's own, far off the plate.
+  e.tubes.tubes = 3;
+  e.tubes.at = {5, 5, 5, 5.1f, 5, 5, 5.2f, 5, 5};
+  const ScanCheck elsewhere = check_scan(e, index);
+  CHECK(elsewhere.bare_handles == bare);
+  // The same tubes recorded through every gap: points filling each gap's
+  // disc across the plate, every 0.01.
+  e.tubes.at.clear();
+  for (const auto& c : test::plate_hole_centres(3))
+    for (double x = -kRadius; x <= kRadius; x += 0.01)
+      for (double y = -kRadius; y <= kRadius; y += 0.01)
+        for (double z = -kHalf; z <= kHalf; z += 0.01)
+          if (std::hypot(x, y) <= kRadius)
+            for (double v : {c[0] + x, c[1] + y, z}) e.tubes.at.push_back(static_cast<float>(v));
+  const ScanCheck through = check_scan(e, index);
+  CHECK(through.bare_handles == 0);
+}

@@ -19,7 +19,11 @@ namespace dbss {
 // the bench's sampled shapes) vary in density several times over one
 // shape: a sparse stretch's gaps are wide in median spacings but not in
 // its own.
-std::vector<float> bare_ratios(const TriangleMesh& m, const PointIndex& index);
+// `own` (may be null): points where the encoder built surface itself (its
+// joined and bridged tubes); a vertex near them, in the same local
+// spacings, counts as supported, so those tubes' handles are never bare
+// while a bare handle elsewhere still is.
+std::vector<float> bare_ratios(const TriangleMesh& m, const PointIndex& index, const PointIndex* own = nullptr);
 
 // The handles of closed mesh `m` that run only through bare triangles
 // (every vertex's ratio above `reach`): its genus minus that of the

@@ -52,6 +52,7 @@ struct ControlMeshStages {
   double bridged_area = 0;     // closed: share of the area bridged over holes (no points support it), 0..1
   size_t doubtful_caps = 0;    // closed: pairs of holes capped that might be a handle's two cut ends
   size_t bridged_tubes = 0;    // closed: pairs of holes joined by a tube (a handle no points support)
+  std::vector<float> bridged_tube_triangles;  // those tubes' triangles, three corners (xyz) each, as built
   size_t cut_triangles = 0;
   size_t pinholes = 0;         // sheet: loops of a few cells closed as gaps in the sampling    // open: shell triangles removed (the far side of the sheet, and those with no points near)
   CarvingStats carving;

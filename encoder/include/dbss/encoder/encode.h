@@ -89,6 +89,7 @@ struct TubeJoin {
   size_t tubes = 0;        // gaps joined
   size_t points = 0;       // points added in them (no scan supports them)
   double area_share = 0;   // their share of the control mesh's area, 0..1
+  std::vector<float> at;   // the points added (xyz): where the encoder's own tubes run
 };
 
 struct Encoding {

@@ -65,6 +65,10 @@ struct HoleFill {
   size_t triangles = 0;        // triangles added
   double area = 0;             // their area, model units^2
   std::vector<uint32_t> added_vertices;  // the new vertices (no points support them)
+  // With `bridge`: the tubes' triangles, three corners each (xyz, a soup),
+  // where they were built: the self-check tells the encoder's own handles
+  // from bare ones by place (scan_check.cpp).
+  std::vector<float> bridge_triangles;
 };
 
 // Closes every boundary loop shorter than `max_perimeter` (model units)

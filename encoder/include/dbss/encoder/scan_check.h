@@ -35,8 +35,8 @@ struct ScanCheck {
   // instead of joining: each may be a lost handle.
   uint32_t capped_rim_pairs = 0;
   // Handles of a closed surface whose tunnel has no point within
-  // kBareHandleReach local spacings (bare_handles.h), beyond the tubes the
-  // encoder joined itself: a gap through a thin part taken for a hole.
+  // kBareHandleReach local spacings (bare_handles.h), the encoder's own tubes
+  // excluded where it built them: a gap through a thin part taken for a hole.
   uint32_t bare_handles = 0;
   // The largest reach (in local spacings, of 2, 3, 4, 5, 6, 8, 12) at which
   // some handle, the encoder's own tubes aside, is still bare; 0 if none is
