@@ -50,7 +50,7 @@ inline constexpr double kMeshLargerControl = 1.5;
 // (MeshEncodeOptions::round_along_surface).  Measured with
 // bench/lod_bench's equal-error search: bench/lod_bench.md, "Thirteenth
 // session (issue 18)".
-inline constexpr double kMeshControlGridSteps = 2;
+inline constexpr double kMeshControlGridSteps = 1;
 
 struct MeshEncodeOptions {
   // kMeshDenseStepRatio; 1: one step for every level.
