@@ -5,7 +5,7 @@
 // bounding-box diagonal (measure/mesh_distance).  Also: dbss's QEM against
 // meshoptimizer's simplifier for the control mesh.
 //
-//   lod_bench [--levels N] [--control-faces F] [--control-bits B] [--cut-holes H] [--hole-radius R] [--cut-only] [--loop-faces N] [--hole-tolerance T] [--hole-faces-per-vertex C] [--errors E1,E2,..] [--samples N] [--detail] [--quick] [--no-search] [--dense-step-ratio R] [--no-boundary-values] [--fixed-control] [--floor-ratio R] [--bdry-levels MASK] [--bdry-always] [--rdo LAMBDA] [--rdo-from LEVEL] [--skip-absent] MESH...
+//   lod_bench [--levels N] [--control-faces F] [--control-bits B] [--cut-holes H] [--hole-radius R] [--cut-only] [--loop-faces N] [--hole-tolerance T] [--hole-faces-per-vertex C] [--errors E1,E2,..] [--samples N] [--detail] [--quick] [--no-search] [--dense-step-ratio R] [--plain-rounding] [--control-grid S] [--no-boundary-values] [--fixed-control] [--floor-ratio R] [--bdry-levels MASK] [--bdry-always] [--rdo LAMBDA] [--rdo-from LEVEL] [--skip-absent] MESH...
 //
 // With no MESH: the libcgal-demo meshes under test-data/ (closed, with
 // holes, several components); --cut-holes H adds each mesh again with H
@@ -57,6 +57,8 @@ struct Args {
   bool quick = false;   // --quick: no simplifier comparison, no decode timing (for sweeps)
   bool no_search = false;  // --no-search: the equal-error table on the targets' grid only
   double dense_step_ratio = kMeshDenseStepRatio;  // --dense-step-ratio R (1: one step for every level)
+  bool round_along_surface = true;  // --plain-rounding: Draco's own rounding of the control mesh
+  double control_grid_steps = MeshEncodeOptions{}.control_grid_steps;  // --control-grid S: Draco's grid in steps
   double rdo_lambda = 0;        // --rdo L: RDO quantization with lambda L (squared steps per bit)
   uint32_t rdo_first_level = 1;  // --rdo-from L
   bool fixed_control = false;   // --fixed-control: the default control mesh, no size choice (EncodeOptions::choose_control)
@@ -78,6 +80,8 @@ struct Args {
 MeshEncodeOptions mesh_options(const Args& a) {
   MeshEncodeOptions m;
   m.dense_step_ratio = a.dense_step_ratio;
+  m.round_along_surface = a.round_along_surface;
+  m.control_grid_steps = a.control_grid_steps;
   m.boundary_values = a.boundary_values;
   m.boundary_levels = a.boundary_levels;
   m.boundary_when_pays = a.boundary_when_pays;
@@ -506,6 +510,8 @@ int main(int argc, char** argv) {
     else if (a == "--samples" && i + 1 < argc) args.samples = static_cast<size_t>(std::atol(argv[++i]));
     else if (a == "--control-bits" && i + 1 < argc) args.control_bits = std::atoi(argv[++i]);
     else if (a == "--detail") args.detail = true;
+    else if (a == "--plain-rounding") args.round_along_surface = false;
+    else if (a == "--control-grid" && i + 1 < argc) args.control_grid_steps = std::atof(argv[++i]);
     else if (a == "--quick") args.quick = true;
     else if (a == "--no-search") args.no_search = true;
     else if (a == "--no-boundary-values") args.boundary_values = false;
@@ -526,7 +532,7 @@ int main(int argc, char** argv) {
       }
     } else if (a == "--skip-absent") args.skip_absent = true;
     else if (!a.empty() && a[0] == '-') {
-      std::fprintf(stderr, "usage: lod_bench [--levels N] [--control-faces F] [--control-bits B] [--cut-holes H] [--hole-radius R] [--cut-only] [--loop-faces N] [--hole-tolerance T] [--hole-faces-per-vertex C] [--errors E1,E2] [--samples N] [--detail] [--quick] [--no-search] [--dense-step-ratio R] [--no-boundary-values] [--fixed-control] [--floor-ratio R] [--bdry-levels MASK] [--bdry-always] [--rdo LAMBDA] [--rdo-from LEVEL] [--skip-absent] MESH...\n");
+      std::fprintf(stderr, "usage: lod_bench [--levels N] [--control-faces F] [--control-bits B] [--cut-holes H] [--hole-radius R] [--cut-only] [--loop-faces N] [--hole-tolerance T] [--hole-faces-per-vertex C] [--errors E1,E2] [--samples N] [--detail] [--quick] [--no-search] [--dense-step-ratio R] [--plain-rounding] [--control-grid S] [--no-boundary-values] [--fixed-control] [--floor-ratio R] [--bdry-levels MASK] [--bdry-always] [--rdo LAMBDA] [--rdo-from LEVEL] [--skip-absent] MESH...\n");
       return 1;
     } else args.meshes.push_back(a);
   }

@@ -6,10 +6,12 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <memory>
 
 #include "dbss/decoder/control_mesh.h"
 #include "dbss/decoder/topology.h"
 #include "dbss/encoder/control_mesh_codec.h"
+#include "dbss/encoder/control_rounding.h"
 #include "dbss/encoder/hole_budget.h"
 #include "dbss/encoder/quantize.h"
 #include "dbss/encoder/simplify.h"
@@ -38,6 +40,17 @@ uint32_t mesh_control_faces(const TriangleMesh& mesh, int64_t genus) { return ho
 
 namespace {
 
+// The vertices of `mesh` on a boundary edge (an edge of one triangle).
+std::vector<uint32_t> boundary_vertices(const TriangleMesh& mesh) {
+  std::vector<uint32_t> out;
+  auto topo = build_topology(static_cast<uint32_t>(mesh.vertex_count()), mesh.triangles);
+  if (!topo.ok()) return out;
+  const LevelTopology& t = topo.value();
+  for (uint32_t h = 0; h < t.triangles.size(); ++h)
+    if (t.twin[h] == kNoHalfEdge) out.push_back(t.triangles[h]), out.push_back(t.triangles[next_half(h)]);
+  return out;
+}
+
 // The mesh's encoding over a control mesh of `target` faces: QEM, Draco,
 // the levels cast against the input, and the file (without
 // control.choice, which encode_mesh adds once the choice is made).
@@ -58,11 +71,25 @@ Status encode_over_mesh_control(const TriangleMesh& in, const MeshInfo& info, co
   format::FileContents& c = e.contents;
   set_extent_and_step(e, in.positions, o);
   if (!(e.diagonal > 0)) return Status(ErrorCode::invalid_argument, "the mesh has no extent");
-  e.control_bits = o.control_bits ? o.control_bits : control_bits_for_step(e.stages.control, e.step);
+  e.control_bits = o.control_bits ? o.control_bits
+                                   : control_bits_for_step(e.stages.control, static_cast<float>(e.step * mo.control_grid_steps));
 
   // As encode_points: everything after Draco continues from what a decoder sees.
   t = Clock::now();
-  if (Status st = control_mesh_through_draco(e); !st.ok()) return st;
+  std::unique_ptr<TriangleMesh> placed;
+  e.rounding = {};
+  if (mo.round_along_surface) {
+    placed = std::make_unique<TriangleMesh>(e.stages.control);
+    e.rounding = round_along_surface(*placed, e.control_bits);
+    // A boundary vertex keeps its own position, which Draco rounds to the
+    // nearest grid point: a slide in its tangent plane would move it across
+    // the rim, and the rim is what BDRY and the boundary rule follow.
+    // (Every vertex stays inside the grid's range, so the grid is the one
+    // round_along_surface computed.)
+    for (const uint32_t v : boundary_vertices(e.stages.control))
+      for (int a = 0; a < 3; ++a) placed->positions[3 * size_t{v} + a] = e.stages.control.positions[3 * size_t{v} + a];
+  }
+  if (Status st = control_mesh_through_draco(e, placed.get()); !st.ok()) return st;
   {
     // Every level is a 1-to-4 split of the control mesh, so it has the
     // control mesh's topology: checking the one Draco gave back (its

@@ -44,9 +44,26 @@ inline constexpr double kMeshDenseStepRatio = 1.5;
 inline constexpr double kMeshFloorRatio = 0.65;
 inline constexpr double kMeshLargerControl = 1.5;
 
+// The control mesh's Draco grid for mesh input, in steps of the error
+// target (control_bits_for_step of step x this: one bit fewer than the
+// step's own grid), with its interior vertices rounded along the surface
+// (MeshEncodeOptions::round_along_surface).  Measured with
+// bench/lod_bench's equal-error search: bench/lod_bench.md, "Thirteenth
+// session (issue 18)".
+inline constexpr double kMeshControlGridSteps = 1;
+
 struct MeshEncodeOptions {
   // kMeshDenseStepRatio; 1: one step for every level.
   double dense_step_ratio = kMeshDenseStepRatio;
+  // The control mesh's Draco grid: each interior control vertex is placed
+  // on the grid point nearest its tangent plane it can slide to
+  // (round_along_surface, as the point path does); boundary vertices round
+  // as Draco would (a slide would move the hole's rim).  false: Draco's
+  // rounding for every vertex, as before.
+  bool round_along_surface = true;
+  // The grid's spacing in steps of the error target (control_bits_for_step
+  // of step x this): kMeshControlGridSteps; 1 is the step's own rule.
+  double control_grid_steps = kMeshControlGridSteps;
   // Format 1.3: boundary odd vertices also move across the boundary, within
   // the surface, onto the input's boundary curve (a BDRY chunk per level
   // that moves any).  false: normal displacements only (a 1.2 file).
