@@ -403,6 +403,7 @@ Result<Encoding> encode_points(const PointIndex& input_index, const EncodeOption
   // How the points scatter about their surface: what every candidate's
   // levels fit by (encode_levels), measured once (its time counted here).
   const PointNoise noise = point_noise(index);
+  e.noise = noise.noisy ? noise.noise : 0;
   e.seconds.control = since(t);
 
   // (A joined tube may reach past the scan's own box: the box bounds the surface.)

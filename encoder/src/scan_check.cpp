@@ -92,6 +92,38 @@ const LevelStats* level_stats(const Encoding& e, size_t l) {
   return nullptr;
 }
 
+// Mean edge length of level l's mesh (each interior edge counted from both
+// of its triangles: a mean, not a sum).
+double mean_edge(const Encoding& e, size_t l) {
+  const std::vector<float>& p = e.levels.positions[l];
+  const std::vector<uint32_t>& t = e.levels.triangles[l];
+  double sum = 0;
+  for (size_t i = 0; i < t.size(); ++i) {
+    const uint32_t a = t[i], b = t[i % 3 == 2 ? i - 2 : i + 1];
+    double d2 = 0;
+    for (int k = 0; k < 3; ++k) d2 += std::pow(double{p[3 * a + k]} - double{p[3 * b + k]}, 2);
+    sum += std::sqrt(d2);
+  }
+  return t.empty() ? 0 : sum / static_cast<double>(t.size());
+}
+
+// The level the clamped share is read from.  A displacement clamps where it
+// would move its vertex more than half its edge (sampling.cpp); that is a
+// surface far from the points only while half an edge is more than the
+// points' own scatter.  On a noisy cloud whose levels refine past that, the
+// fit's heights scatter over half an edge by chance: libcgal-demo's
+// sphere_20k (noise about half a point spacing) clamps 0.0/0.2/0.9/3.9% at
+// levels 2-5 of a closed, one-component sphere 1.0 spacing from its points,
+// and was warned of "a hole the carving leaked through".  A leak or a sheet
+// closed over clamps at every level, the coarse ones too, so it is still
+// seen at the finest level whose half edge is at least the noise.
+size_t clamp_level(const Encoding& e, size_t measured) {
+  if (!(e.noise > 0)) return measured;
+  for (size_t l = measured; l >= 1; --l)
+    if (mean_edge(e, l) / 2 >= e.noise) return l;
+  return std::min<size_t>(measured, 1);
+}
+
 // Each triangle of m cut into four at its edges' midpoints (flat: the
 // vertices added lie on m's triangles).
 TriangleMesh split_at_midpoints(const TriangleMesh& m) {
@@ -205,7 +237,8 @@ ScanCheck check_scan(const Encoding& e, const PointIndex& index, unsigned thread
     if (c.point_clusters == 0) c.point_clusters = count;
   }
   const size_t measured = e.levels.positions.empty() ? 0 : measured_level(e);
-  if (const LevelStats* st = level_stats(e, measured))
+  c.clamped_level = static_cast<uint32_t>(clamp_level(e, measured));
+  if (const LevelStats* st = level_stats(e, c.clamped_level))
     c.clamped_share = static_cast<double>(st->clamped) / static_cast<double>(std::max<size_t>(1, st->odd));
   // Uncovered area: triangles whose centroid has no point near.
   double total = 0, bare = 0;
@@ -286,14 +319,13 @@ ScanCheck check_scan(const Encoding& e, const PointIndex& index, unsigned thread
   }
 
   const auto warn = [&](const char* code, const std::string& message) { c.warnings.push_back({code, message}); };
-  const uint32_t level = static_cast<uint32_t>(measured);
   if (c.surface_components != c.point_clusters)
     warn("components", "the surface has " + std::to_string(c.surface_components) + " component(s) where the points form " +
                            std::to_string(c.point_clusters) +
                            " cluster(s): parts merged or broken up (stray points, or a carving grid too fine or too coarse "
                            "for the sampling; try --grid)");
   if (c.clamped_share > kMaxClamped)
-    warn("clamped", fmt("%.1f%%", 100 * c.clamped_share) + " of level " + std::to_string(level) +
+    warn("clamped", fmt("%.1f%%", 100 * c.clamped_share) + " of level " + std::to_string(c.clamped_level) +
                         " displacements clamped (bound " + fmt("%.0f%%", 100 * kMaxClamped) +
                         "): the surface is far from the points in places: a hole the carving leaked through or a sheet "
                         "closed over (try --surface open or --surface closed), or sharp creases the subdivision "

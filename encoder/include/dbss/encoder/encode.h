@@ -110,6 +110,7 @@ struct Encoding {
   ControlRounding rounding;       // where Draco's grid put the control vertices (round_along_surface)
   uint32_t level_count = 0;       // levels in the file (given, or auto_levels)
   double error = 0;               // the error target actually used (from `step` when given)
+  double noise = 0;               // the points' noise (points_noise) on a noisy cloud (points_are_noisy), else 0
   std::string control_choice;     // which control mesh was kept and why (EncodeOptions::choose_control; `meta` control.choice)
   EncodeTimes seconds;
 };

@@ -27,7 +27,8 @@ struct ScanCheck {
   uint32_t point_clusters = 0;      // of the points, linked at a few spacings
   bool open = false;                // the surface has a boundary
   uint32_t boundary_loops = 0;
-  double clamped_share = 0;       // of the finest level's displacements, 0..1
+  double clamped_share = 0;       // of clamped_level's displacements, 0..1
+  uint32_t clamped_level = 0;     // the level clamped_share is of (see check_scan: coarser than the measured one on noise)
   double uncovered_share = 0;     // of the measured level's surface area, farther than a few spacings from any point, 0..1
   double points_to_surface = 0;   // mean, model units, to the measured level (of at most 2^18 points: see check_scan)
   // Pairs of rims where the points end (point_rims.h) that look like the
