@@ -31,7 +31,9 @@ Result<Comparison> compare_representations(const PointCloud& points, const Encod
   if (e.points.size() != points.size()) cleaned = std::make_unique<PointIndex>(e.points);
   const PointIndex& index = cleaned ? *cleaned : input_index;
   const uint32_t levels = static_cast<uint32_t>(e.levels.levels.size());
-  const float step = e.step;  // the step dbss's levels used
+  // The step dbss's levels used: a noisy cloud's levels round at a step
+  // from the points' noise, coarser than e.step (levels.cpp).
+  const float step = levels ? e.levels.levels[0].step : e.step;
   std::vector<DssLevel> dss;
   if (levels) {
     if (o.on_progress) o.on_progress("full-vertex DSS baseline");

@@ -175,7 +175,10 @@ def main(argv=None):
     args.output_dir.mkdir(parents=True, exist_ok=True)
     inputs = find_inputs(args.input_dir)
     # What decides whether an output can be reused.
-    key = json.dumps({"options": options, "encoder": dbss.__version__}, sort_keys=True)
+    # "defaults" changes when the encoder's defaults do under one version
+    # (2: creases on at 30 degrees), so outputs written under the old
+    # defaults are not taken for new ones.
+    key = json.dumps({"options": options, "encoder": dbss.__version__, "defaults": 2}, sort_keys=True)
     manifest = read_manifest(args.output_dir)
 
     rows, todo, owner = [], [], {}

@@ -45,8 +45,8 @@ inline constexpr double kMeshFloorRatio = 0.65;
 inline constexpr double kMeshLargerControl = 1.5;
 
 // The control mesh's Draco grid for mesh input, in steps of the error
-// target (control_bits_for_step of step x this: one bit fewer than the
-// step's own grid), with its interior vertices rounded along the surface
+// target (control_bits_for_step of step x this: at 1, the step's own
+// grid; 2 was measured and lost the cow's qp8), with its interior vertices rounded along the surface
 // (MeshEncodeOptions::round_along_surface).  Measured with
 // bench/lod_bench's equal-error search: bench/lod_bench.md, "Thirteenth
 // session (issue 18)".
