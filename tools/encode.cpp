@@ -330,8 +330,13 @@ int run_encode(const std::vector<std::string_view>& args) {
                 c.surface_components, c.point_clusters, c.open ? "open, " : "closed",
                 c.open ? (std::to_string(c.boundary_loops) + " boundary loop(s), ").c_str() : ", ", 100 * c.clamped_share,
                 100 * c.uncovered_share, c.spacing > 0 ? c.points_to_surface / c.spacing : 0.0);
-  std::printf("\nself-check: %s: %s\n", c.warnings.empty() ? "ok" : (std::to_string(c.warnings.size()) + " warning(s)").c_str(),
-              figures);
+  // On noise the clamped share is a coarser level's than the table's last
+  // (check_scan: past the noise, the noise alone clamps); say which.
+  const bool coarser = !e.levels.stats.empty() && c.clamped_level != e.levels.stats.back().level && e.noise > 0;
+  const std::string clamped_at =
+      coarser ? " (clamped share of level " + std::to_string(c.clamped_level) + ", the finest whose half edge is over the points' noise)" : "";
+  std::printf("\nself-check: %s: %s%s\n", c.warnings.empty() ? "ok" : (std::to_string(c.warnings.size()) + " warning(s)").c_str(),
+              figures, clamped_at.c_str());
   return 0;
 }
 

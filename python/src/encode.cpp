@@ -170,6 +170,7 @@ py::dict stats_dict(const Encoding& e, size_t points_in, const EncodeOptions& o)
   check["open"] = e.check.open;
   check["boundary_loops"] = e.check.boundary_loops;
   check["clamped_share"] = e.check.clamped_share;
+  check["clamped_level"] = e.check.clamped_level;  // the level clamped_share is of (coarser than the finest on noise)
   check["uncovered_share"] = e.check.uncovered_share;
   check["points_to_surface"] = e.check.points_to_surface;
   check["spacing"] = e.check.spacing;
