@@ -11,7 +11,7 @@ namespace dbss {
 
 using namespace mesh_geometry;
 
-ControlRounding round_along_surface(TriangleMesh& mesh, int bits) {
+ControlRounding round_along_surface(TriangleMesh& mesh, int bits, const std::vector<uint8_t>* fixed) {
   ControlRounding out;
   const size_t n = mesh.vertex_count();
   if (n == 0 || bits < 1 || bits > 30) return out;
@@ -57,7 +57,7 @@ ControlRounding round_along_surface(TriangleMesh& mesh, int bits) {
     const double plain = std::abs(dot(offset(k0), nv));
     nearest_sum += plain;
     int32_t best[3] = {k0[0], k0[1], k0[2]};
-    if (len > 0) {
+    if (len > 0 && !(fixed && (*fixed)[v])) {
       // A small share of the slide in the cost: of two points about as near
       // the plane, the one nearer the vertex.
       const auto cost = [&](const int32_t k[3]) {

@@ -80,14 +80,14 @@ Status encode_over_mesh_control(const TriangleMesh& in, const MeshInfo& info, co
   e.rounding = {};
   if (mo.round_along_surface) {
     placed = std::make_unique<TriangleMesh>(e.stages.control);
-    e.rounding = round_along_surface(*placed, e.control_bits);
-    // A boundary vertex keeps its own position, which Draco rounds to the
-    // nearest grid point: a slide in its tangent plane would move it across
-    // the rim, and the rim is what BDRY and the boundary rule follow.
-    // (Every vertex stays inside the grid's range, so the grid is the one
-    // round_along_surface computed.)
-    for (const uint32_t v : boundary_vertices(e.stages.control))
-      for (int a = 0; a < 3; ++a) placed->positions[3 * size_t{v} + a] = e.stages.control.positions[3 * size_t{v} + a];
+    // A boundary vertex takes its nearest grid point, as Draco would round
+    // it: a slide in its tangent plane would move it across the rim, and
+    // the rim is what BDRY and the boundary rule follow.  (Fixed inside
+    // round_along_surface, whose guard against an edge's two ends on one
+    // grid point then sees the rim where it ends up.)
+    std::vector<uint8_t> rim(e.stages.control.vertex_count(), 0);
+    for (const uint32_t v : boundary_vertices(e.stages.control)) rim[v] = 1;
+    e.rounding = round_along_surface(*placed, e.control_bits, &rim);
   }
   if (Status st = control_mesh_through_draco(e, placed.get()); !st.ok()) return st;
   {

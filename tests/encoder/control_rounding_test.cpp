@@ -75,3 +75,33 @@ TEST_CASE("control vertices rounded along their surface: nearer it than plain ro
     CHECK(plain_worst < 1e-2);
   }
 }
+
+// `fixed` (a mesh's rim): those vertices take Draco's own rounding, placed
+// here so the guard against an edge's two ends on one grid point sees them
+// where they end up; the others still slide, and only they are counted.
+TEST_CASE("control vertices marked fixed round as Draco does and are not counted as slid") {
+  TriangleMesh torus = test::jitter(test::torus(32, 16), 0.01f, 3);
+  std::vector<uint8_t> fixed(torus.vertex_count(), 0);
+  for (size_t v = 0; v < fixed.size(); v += 2) fixed[v] = 1;
+  const int bits = 10;
+  TriangleMesh placed = torus;
+  const ControlRounding r = round_along_surface(placed, bits, &fixed);
+  REQUIRE(r.grid > 0);
+  CHECK(r.vertices == torus.vertex_count() - (torus.vertex_count() + 1) / 2);
+  // Draco's decode of the plain mesh: each fixed vertex is at its plainly
+  // rounded point, which Draco's decode of the placed mesh also holds.
+  auto plain = encode_control_mesh(torus, {bits, 0});
+  REQUIRE(plain.ok());
+  auto plain_back = decode_control_mesh(plain.value(), 1u << 20, 1u << 20);
+  REQUIRE(plain_back.ok());
+  const auto rounded = sorted_positions(plain_back.value());
+  size_t fixed_at_plain = 0, slid = 0;
+  for (size_t v = 0; v < fixed.size(); ++v) {
+    const std::array<float, 3> p{placed.positions[3 * v], placed.positions[3 * v + 1], placed.positions[3 * v + 2]};
+    const bool at_plain = std::binary_search(rounded.begin(), rounded.end(), p);
+    if (fixed[v]) fixed_at_plain += at_plain;
+    else slid += !at_plain;
+  }
+  CHECK(fixed_at_plain == (fixed.size() + 1) / 2);
+  CHECK(slid > 0);
+}

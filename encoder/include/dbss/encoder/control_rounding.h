@@ -2,6 +2,8 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
+#include <vector>
 
 #include "dbss/decoder/mesh.h"
 
@@ -34,7 +36,10 @@ inline constexpr double kRoundingSlide = 1.5;
 // that, so the grid can be 2-3 bits coarser for the same offset.  The
 // vertices holding the mesh's minimum on an axis keep that coordinate (the
 // grid's origin stays where Draco puts it), and no vertex leaves the
-// grid's range.  Vertices without a normal round as Draco would.
-ControlRounding round_along_surface(TriangleMesh& mesh, int bits);
+// grid's range.  Vertices without a normal round as Draco would, and so do
+// the vertices `fixed` marks (non-zero; a mesh's rim, which must not slide
+// across itself), placed on their nearest grid point here so that the
+// guard against two ends of an edge on one point sees where they end up.
+ControlRounding round_along_surface(TriangleMesh& mesh, int bits, const std::vector<uint8_t>* fixed = nullptr);
 
 }  // namespace dbss
