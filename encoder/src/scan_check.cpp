@@ -163,7 +163,9 @@ PointCloud own_tube_points(const Encoding& e, double spacing) {
     double longest = 0;
     for (const auto& [p, q] : {std::pair{a, b}, std::pair{b, c}, std::pair{c, a}})
       longest = std::max(longest, std::hypot(double{p[0]} - q[0], double{p[1]} - q[1], double{p[2]} - q[2]));
-    const int n = spacing > 0 ? std::clamp(static_cast<int>(std::ceil(longest / spacing)), 1, 64) : 1;
+    // (In double before the cast: a NaN or huge ratio is no int.)
+    const double k = spacing > 0 ? std::ceil(longest / spacing) : 1.0;
+    const int n = k >= 1 ? static_cast<int>(std::min(k, 64.0)) : 1;
     for (int u = 0; u <= n; ++u)
       for (int v = 0; u + v <= n; ++v)
         for (int k = 0; k < 3; ++k)
