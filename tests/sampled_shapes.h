@@ -14,6 +14,19 @@ namespace dbss::test {
 
 using Sdf = std::function<double(double, double, double)>;
 
+// n points on the unit sphere with Gaussian noise of `sigma` along the radius.
+inline PointCloud noisy_sphere(size_t n, double sigma, uint32_t seed) {
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> g(0, 1);
+  PointCloud pc;
+  for (size_t i = 0; i < n; ++i) {
+    const double x = g(rng), y = g(rng), z = g(rng);
+    const double s = (1 + sigma * g(rng)) / std::sqrt(x * x + y * y + z * z);
+    pc.xyz.insert(pc.xyz.end(), {float(x * s), float(y * s), float(z * s)});
+  }
+  return pc;
+}
+
 inline double torus_sdf(double x, double y, double z, double cx, double cy, double R, double r) {
   const double q = std::hypot(x - cx, y - cy) - R;
   return std::hypot(q, z) - r;

@@ -5,6 +5,8 @@
 // out a right sphere and was warned of a leak: 3.9% of level 5 clamped.
 #include <catch2/catch.hpp>
 
+#include "../sampled_shapes.h"
+
 #include <cmath>
 #include <random>
 
@@ -16,18 +18,7 @@ using namespace dbss;
 
 namespace {
 
-// n points on the unit sphere with Gaussian noise of `sigma` along the radius.
-PointCloud noisy_sphere(size_t n, double sigma, uint32_t seed) {
-  std::mt19937 rng(seed);
-  std::normal_distribution<double> g(0, 1);
-  PointCloud pc;
-  for (size_t i = 0; i < n; ++i) {
-    const double x = g(rng), y = g(rng), z = g(rng);
-    const double s = (1 + sigma * g(rng)) / std::sqrt(x * x + y * y + z * z);
-    pc.xyz.insert(pc.xyz.end(), {float(x * s), float(y * s), float(z * s)});
-  }
-  return pc;
-}
+using test::noisy_sphere;
 
 // Mean length of level l's triangle sides (interior edges counted twice).
 double mean_edge(const Encoding& e, size_t l) {

@@ -4,6 +4,8 @@
 // point among the surface's points does not pull it.
 #include <catch2/catch.hpp>
 
+#include "../sampled_shapes.h"
+
 #include <cmath>
 #include <numbers>
 #include <random>
@@ -16,19 +18,7 @@ using namespace dbss;
 
 namespace {
 
-// n points on the unit sphere with Gaussian noise of `sigma` along the radius.
-PointCloud noisy_sphere(size_t n, double sigma, uint32_t seed) {
-  std::mt19937 rng(seed);
-  std::normal_distribution<double> g(0, 1);
-  PointCloud pc;
-  for (size_t i = 0; i < n; ++i) {
-    double x = g(rng), y = g(rng), z = g(rng);
-    const double r = std::sqrt(x * x + y * y + z * z);
-    const double s = (1 + sigma * g(rng)) / r;
-    pc.xyz.insert(pc.xyz.end(), {float(x * s), float(y * s), float(z * s)});
-  }
-  return pc;
-}
+using test::noisy_sphere;
 
 // A grid of points on the plane z = h, spacing `d`, over [-1, 1]^2.
 void add_plane(PointCloud& pc, double h, double d) {
