@@ -1,5 +1,6 @@
 // Point clouds sampled from shapes of known genus, given by signed distance
-// functions; built in the tests, no data files needed.
+// functions, or from a mesh's surface; built in the tests, no data files
+// needed.  And the options the crease tests encode such clouds with.
 #pragma once
 
 #include <algorithm>
@@ -8,11 +9,33 @@
 #include <random>
 #include <vector>
 
+#include "dbss/decoder/mesh.h"
+#include "dbss/encoder/encode.h"
 #include "dbss/encoder/point_input.h"
+#include "dbss/measure/surface_samples.h"
 
 namespace dbss::test {
 
 using Sdf = std::function<double(double, double, double)>;
+
+// `n` points on a mesh's surface, area-uniform (sample_surface, `seed`):
+// a shape with sharp edges sampled as crease_bench samples it.
+inline PointCloud sampled(const TriangleMesh& m, size_t n, uint32_t seed) {
+  const std::vector<double> p = sample_surface(m, n, seed);
+  PointCloud pc;
+  pc.xyz.assign(p.begin(), p.end());
+  return pc;
+}
+
+// The crease tests' options: `levels` levels on two threads, creases
+// detected at `angle` degrees (0: off), every other option the library's.
+inline EncodeOptions crease_options(double angle, uint32_t levels) {
+  EncodeOptions o;
+  o.levels = levels;
+  o.threads = 2;
+  o.creases.angle_degrees = angle;
+  return o;
+}
 
 // n points on the unit sphere with Gaussian noise of `sigma` along the radius.
 inline PointCloud noisy_sphere(size_t n, double sigma, uint32_t seed) {

@@ -8,24 +8,17 @@
 #include <cmath>
 
 #include "../crease_shapes.h"
+#include "../sampled_shapes.h"
 #include "../shapes.h"
 #include "dbss/decoder/topology.h"
 #include "dbss/encoder/crease_align.h"
 #include "dbss/encoder/encode.h"
 #include "dbss/encoder/sampling.h"
 #include "dbss/measure/mesh_distance.h"
-#include "dbss/measure/surface_samples.h"
 
 using namespace dbss;
 
 namespace {
-
-PointCloud sampled(const TriangleMesh& m, size_t n) {
-  const std::vector<double> p = sample_surface(m, n, 5);
-  PointCloud pc;
-  pc.xyz.assign(p.begin(), p.end());
-  return pc;
-}
 
 // Which of the cube's 12 edges (|x| = |y| = 1 and so on, within tol) holds
 // the point: a bit per face pair it is on, 0 when on none.
@@ -45,11 +38,8 @@ int bits(int x) {
 }  // namespace
 
 TEST_CASE("a sampled cube: tagged control edges run along the cube's edges in chains") {
-  const PointCloud pc = sampled(test::cube(), 40000);
-  EncodeOptions o;
-  o.levels = 1;
-  o.threads = 2;
-  o.creases.angle_degrees = 30;
+  const PointCloud pc = test::sampled(test::cube(), 40000, 5);
+  EncodeOptions o = test::crease_options(30, 1);
   auto e = encode_points(pc, o);
   REQUIRE(e.ok());
   const Encoding& enc = e.value();
@@ -90,7 +80,7 @@ TEST_CASE("a sampled cube: tagged control edges run along the cube's edges in ch
 
 TEST_CASE("alignment moves nothing on smooth shapes") {
   for (const TriangleMesh& m : {test::uv_sphere(24, 32), test::torus(48, 24)}) {
-    const PointCloud pc = sampled(m, 12000);
+    const PointCloud pc = test::sampled(m, 12000, 5);
     const PointIndex index(pc);
     TriangleMesh control = m;  // the shape's own mesh as a control mesh: vertices on the points' surface
     CreaseOptions o;
@@ -109,14 +99,11 @@ TEST_CASE("alignment moves nothing on smooth shapes") {
 
 TEST_CASE("a sampled cube's refined levels: creases and one-sided sampling keep the edges sharp") {
   const TriangleMesh truth = test::cube();
-  const PointCloud pc = sampled(truth, 40000);
+  const PointCloud pc = test::sampled(truth, 40000, 5);
   const double diagonal = 2 * std::sqrt(3.0);
   double mean[2] = {}, worst[2] = {};  // level 2's, over the diagonal
   for (int on = 0; on < 2; ++on) {
-    EncodeOptions o;
-    o.levels = 2;
-    o.threads = 2;
-    o.creases.angle_degrees = on ? 30 : 0;
+    EncodeOptions o = test::crease_options(on ? 30 : 0, 2);
     auto e = encode_points(pc, o);
     REQUIRE(e.ok());
     const Encoding& enc = e.value();
@@ -132,7 +119,7 @@ TEST_CASE("a sampled cube's refined levels: creases and one-sided sampling keep 
 }
 
 TEST_CASE("point normals: the same floats on one thread and on two, and each side's own normal at a cube's edge") {
-  const PointCloud pc = sampled(test::cube(), 24000);  // three pieces of work allowed, two threads used
+  const PointCloud pc = test::sampled(test::cube(), 24000, 5);  // three pieces of work allowed, two threads used
   const PointIndex index(pc);
   const std::vector<float> one = estimate_point_normals(index, 1), two = estimate_point_normals(index, 2);
   REQUIRE(one.size() == 3 * pc.size());
@@ -152,13 +139,10 @@ TEST_CASE("point normals: the same floats on one thread and on two, and each sid
 }
 
 TEST_CASE("a sampled cube: vertices beside a line are merged into it, and the control mesh stays a closed sphere") {
-  const PointCloud pc = sampled(test::cube(), 40000);
+  const PointCloud pc = test::sampled(test::cube(), 40000, 5);
   size_t darts[2] = {}, collapses[2] = {};
   for (int on = 0; on < 2; ++on) {
-    EncodeOptions o;
-    o.levels = 0;
-    o.threads = 2;
-    o.creases.angle_degrees = 30;
+    EncodeOptions o = test::crease_options(30, 0);
     o.creases.collapse = on;
     auto e = encode_points(pc, o);
     REQUIRE(e.ok());
@@ -178,7 +162,7 @@ TEST_CASE("a sampled cube: vertices beside a line are merged into it, and the co
 }
 
 TEST_CASE("sampling beside a cube's edge: the two sides' planes, not a fit that rounds the edge") {
-  const PointCloud pc = sampled(test::cube(), 40000);
+  const PointCloud pc = test::sampled(test::cube(), 40000, 5);
   const PointIndex index(pc);
   const std::vector<float> normals = estimate_point_normals(index, 2);
   const double s = 1 / std::sqrt(2.0);
@@ -211,15 +195,12 @@ TEST_CASE("a sampled cube: relaxing the flat vertices beside a line lowers level
   // were not relaxed, and the butterfly's extraordinary rule at them put odd
   // vertices past the edge in the face's plane (crease_bench: 0.128 out).
   const TriangleMesh truth = test::cube();
-  const PointCloud pc = sampled(truth, 40000);
+  const PointCloud pc = test::sampled(truth, 40000, 5);
   const double diagonal = 2 * std::sqrt(3.0);
   double mean[2] = {}, worst[2] = {};  // level 1's, over the diagonal
   size_t relaxed[2] = {};
   for (int on = 0; on < 2; ++on) {
-    EncodeOptions o;
-    o.levels = 1;
-    o.threads = 2;
-    o.creases.angle_degrees = 30;
+    EncodeOptions o = test::crease_options(30, 1);
     o.creases.relax_beside_lines = on;
     // Measured against the baseline it was written for: the corner tags on
     // flat fans (tenth session) fix part of the same overshoot on their
@@ -251,15 +232,12 @@ TEST_CASE("a sampled cube: flips toward valence 6 beside the lines, and level 1 
   // edges next to a line are tagged when their points see both faces, each
   // a spur ending in a dart.
   const TriangleMesh truth = test::cube();
-  const PointCloud pc = sampled(truth, 40000);
+  const PointCloud pc = test::sampled(truth, 40000, 5);
   const double diagonal = 2 * std::sqrt(3.0);
   double mean[3] = {}, worst[3] = {}, length[3] = {};
   size_t darts[3] = {}, corners[3] = {}, flips[3] = {};
   for (int now = 0; now < 3; ++now) {
-    EncodeOptions o;
-    o.levels = 1;
-    o.threads = 2;
-    o.creases.angle_degrees = 30;
+    EncodeOptions o = test::crease_options(30, 1);
     if (now == 0) o.creases.valence_flips = o.creases.relax_beside_lines = false;
     o.creases.untag_flat = now == 2;
     // Against the baseline it was written for (no corner tags on flat

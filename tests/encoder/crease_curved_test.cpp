@@ -8,9 +8,9 @@
 #include <cmath>
 
 #include "../crease_shapes.h"
+#include "../sampled_shapes.h"
 #include "dbss/encoder/crease_align.h"
 #include "dbss/encoder/sampling.h"
-#include "dbss/measure/surface_samples.h"
 
 using namespace dbss;
 
@@ -45,9 +45,7 @@ double truth(const double p[3], const double n[3]) {
 }  // namespace
 
 TEST_CASE("the wedge beside a thin cylinder's rim samples the round wall, not a plane through it") {
-  const std::vector<double> xyz = sample_surface(thin_cylinder(), 20000, 1);
-  PointCloud pc;
-  pc.xyz.assign(xyz.begin(), xyz.end());
+  const PointCloud pc = test::sampled(thin_cylinder(), 20000, 1);
   const PointIndex index(pc);
   const std::vector<float> normals = estimate_point_normals(index, 2);
   const PointSides sides{&normals, std::cos(30 * 3.14159265358979323846 / 180), true};

@@ -12,22 +12,15 @@
 #include <vector>
 
 #include "../crease_shapes.h"
+#include "../sampled_shapes.h"
 #include "../shapes.h"
 #include "dbss/encoder/encode.h"
 #include "dbss/measure/mesh_distance.h"
-#include "dbss/measure/surface_samples.h"
 #include "encode_options.h"
 
 using namespace dbss;
 
 namespace {
-
-PointCloud sampled(const TriangleMesh& m, size_t n, uint32_t seed) {
-  const std::vector<double> p = sample_surface(m, n, seed);
-  PointCloud pc;
-  pc.xyz.assign(p.begin(), p.end());
-  return pc;
-}
 
 // The command's options after `args`, as `dbss encode` parses them, with a
 // fixed level count (auto is not what these tests are about, and costs).
@@ -69,7 +62,7 @@ TEST_CASE("a sampled torus and sphere under the default options: no tag and the 
   for (const Case& c : cases)
     for (uint32_t seed : {1u, 2u}) {
       INFO(c.name << " seed " << seed);
-      const PointCloud pc = sampled(c.mesh, 30000, seed);
+      const PointCloud pc = test::sampled(c.mesh, 30000, seed);
       auto on = encode_points(pc, command_options({}, 2));
       auto off = encode_points(pc, command_options({"--no-creases"}, 2));
       REQUIRE(on.ok());
@@ -83,7 +76,7 @@ TEST_CASE("a sampled torus and sphere under the default options: no tag and the 
 TEST_CASE("a sampled cube under the default options gets crease tags and level 3 within 1% of the diagonal") {
   const TriangleMesh cube = test::cube();
   const double diag = diagonal(cube);
-  const PointCloud pc = sampled(cube, 40000, 1);
+  const PointCloud pc = test::sampled(cube, 40000, 1);
   auto e = encode_points(pc, command_options({}, 3));
   REQUIRE(e.ok());
   const Encoding& enc = e.value();

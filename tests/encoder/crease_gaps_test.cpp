@@ -9,24 +9,17 @@
 #include <cmath>
 
 #include "../crease_shapes.h"
+#include "../sampled_shapes.h"
 #include "../test_data.h"
 #include "dbss/decoder/level_refiner.h"
 #include "dbss/decoder/topology.h"
 #include "dbss/encoder/encode.h"
 #include "dbss/io/geometry_files.h"
 #include "dbss/measure/mesh_distance.h"
-#include "dbss/measure/surface_samples.h"
 
 using namespace dbss;
 
 namespace {
-
-PointCloud sampled(const TriangleMesh& m, size_t n, uint32_t seed) {
-  const std::vector<double> p = sample_surface(m, n, seed);
-  PointCloud pc;
-  pc.xyz.assign(p.begin(), p.end());
-  return pc;
-}
 
 // Length of the tagged control edges whose both ends lie within `tol` of
 // the line x = 1, y = -1 (the roof block's vertical edge).
@@ -70,14 +63,11 @@ std::vector<double> stencil_offsets(const TriangleMesh& mesh, const format::Crea
 
 TEST_CASE("a sampled roof block (seed 3): the vertical edge's chain has no gap, and level 1 stays near the roof") {
   const TriangleMesh truth = test::roof_block(8);
-  const PointCloud pc = sampled(truth, 40000, 3);
+  const PointCloud pc = test::sampled(truth, 40000, 3);
   const double diagonal = 2 * std::sqrt(3.0);
   double covered[2] = {}, worst[2] = {}, mean[2] = {};
   for (int now = 0; now < 2; ++now) {
-    EncodeOptions o;
-    o.levels = 1;
-    o.threads = 2;
-    o.creases.angle_degrees = 30;
+    EncodeOptions o = test::crease_options(30, 1);
     o.creases.gap_snaps = now == 1;
     auto e = encode_points(pc, o);
     REQUIRE(e.ok());
@@ -107,11 +97,8 @@ TEST_CASE("flat-fan corner tags: every chosen tag halves its worst stencil offse
     const TriangleMesh truth = std::string(name) == "cube" ? test::cube() : test::roof_block(8);
     for (uint32_t seed : {1u, 2u})
     for (bool check : {false, true}) {
-      const PointCloud pc = sampled(truth, 40000, seed);
-      EncodeOptions o;
-      o.levels = 0;
-      o.threads = 2;
-      o.creases.angle_degrees = 30;
+      const PointCloud pc = test::sampled(truth, 40000, seed);
+      EncodeOptions o = test::crease_options(30, 0);
       o.creases.flat_fan_check = check;
       auto e = encode_points(pc, o);
       REQUIRE(e.ok());
@@ -154,14 +141,11 @@ TEST_CASE("the libcgal-demo fandisk (seed 1): a fan tilted by a neighbour snappe
   for (size_t i = 0; i < truth.positions.size(); ++i)
     lo[i % 3] = std::min(lo[i % 3], double{truth.positions[i]}), hi[i % 3] = std::max(hi[i % 3], double{truth.positions[i]});
   const double diagonal = std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) + (hi[2] - lo[2]) * (hi[2] - lo[2]));
-  const PointCloud pc = sampled(truth, 40000, 1);
+  const PointCloud pc = test::sampled(truth, 40000, 1);
   double worst[2] = {}, mean[2] = {};
   size_t flat[2] = {};
   for (int now = 0; now < 2; ++now) {
-    EncodeOptions o;
-    o.levels = 1;
-    o.threads = 2;
-    o.creases.angle_degrees = 30;
+    EncodeOptions o = test::crease_options(30, 1);
     o.creases.flat_fan_fit = now == 1;
     auto e = encode_points(pc, o);
     REQUIRE(e.ok());

@@ -7,22 +7,15 @@
 #include <cmath>
 
 #include "../crease_shapes.h"
+#include "../sampled_shapes.h"
 #include "../shapes.h"
 #include "dbss/encoder/crease_align.h"
 #include "dbss/encoder/crease_lines.h"
 #include "dbss/encoder/sampling.h"
-#include "dbss/measure/surface_samples.h"
 
 using namespace dbss;
 
 namespace {
-
-PointCloud sampled(const TriangleMesh& m, size_t n) {
-  const std::vector<double> p = sample_surface(m, n, 5);
-  PointCloud pc;
-  pc.xyz.assign(p.begin(), p.end());
-  return pc;
-}
 
 TriangleMesh moved(TriangleMesh m, float dx) {
   for (size_t i = 0; i < m.positions.size(); i += 3) m.positions[i] += dx;
@@ -34,7 +27,7 @@ TriangleMesh moved(TriangleMesh m, float dx) {
 TEST_CASE("crease lines: near a tagged edge within its reach and not elsewhere") {
   const TriangleMesh cube = test::cube();
   const format::Creases tags = test::creases_from_dihedral(cube, 30);
-  const PointCloud pc = sampled(cube, 20000);
+  const PointCloud pc = test::sampled(cube, 20000, 5);
   const PointIndex index(pc);
   const CreaseLines lines(cube, tags, index, 0.5, 32);
   CHECK(lines.size() == 12);  // the cube's edges, not its faces' diagonals
@@ -60,8 +53,8 @@ TEST_CASE("a thin tube with the crease lines elsewhere: no wedge samples and the
   // elsewhere, a tightly curved smooth region.
   const TriangleMesh tube = test::torus(160, 24, 1.0f, 0.05f);
   const TriangleMesh cube = moved(test::cube(), 10);
-  PointCloud pc = sampled(tube, 18000);
-  const PointCloud cube_points = sampled(cube, 20000);
+  PointCloud pc = test::sampled(tube, 18000, 5);
+  const PointCloud cube_points = test::sampled(cube, 20000, 5);
   pc.xyz.insert(pc.xyz.end(), cube_points.xyz.begin(), cube_points.xyz.end());
   const PointIndex index(pc);
   const std::vector<float> normals = estimate_point_normals(index, 2);

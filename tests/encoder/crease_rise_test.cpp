@@ -10,27 +10,16 @@
 #include <string>
 
 #include "../crease_shapes.h"
+#include "../sampled_shapes.h"
 #include "dbss/encoder/crease_align.h"
 #include "dbss/encoder/encode.h"
 #include "dbss/encoder/sampling.h"
 #include "dbss/measure/mesh_distance.h"
-#include "dbss/measure/surface_samples.h"
 
 using namespace dbss;
 
-namespace {
-
-PointCloud sampled(const TriangleMesh& truth, size_t count, uint32_t seed) {
-  const std::vector<double> p = sample_surface(truth, count, seed);
-  PointCloud pc;
-  pc.xyz.assign(p.begin(), p.end());
-  return pc;
-}
-
-}  // namespace
-
 TEST_CASE("the wedge beside a cube's edge and at its corner finds the faces, not the blend of their normals") {
-  const PointCloud pc = sampled(test::cube(), 40000, 1);
+  const PointCloud pc = test::sampled(test::cube(), 40000, 1);
   const PointIndex index(pc);
   const std::vector<float> normals = estimate_point_normals(index, 2);
   const PointSides sides{&normals, std::cos(30 * 3.14159265358979323846 / 180), true};
@@ -81,11 +70,8 @@ TEST_CASE("sampled cube and roof with creases: level 1 is no farther from the tr
     const TriangleMesh truth = std::string(shape) == "cube" ? test::cube() : test::roof_block(8);
     const double diagonal = 2 * std::sqrt(3.0);
     for (uint32_t seed = 1; seed <= (std::string(shape) == "cube" ? 3u : 2u); ++seed) {
-      EncodeOptions o;
-      o.levels = 1;
-      o.threads = 2;
-      o.creases.angle_degrees = 30;
-      auto e = encode_points(sampled(truth, 40000, seed), o);
+      EncodeOptions o = test::crease_options(30, 1);
+      auto e = encode_points(test::sampled(truth, 40000, seed), o);
       REQUIRE(e.ok());
       double mean[2];
       for (uint32_t l = 0; l <= 1; ++l) {

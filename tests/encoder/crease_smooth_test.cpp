@@ -12,44 +12,25 @@
 #include <cmath>
 
 #include "../crease_shapes.h"
+#include "../sampled_shapes.h"
 #include "../shapes.h"
 #include "../test_data.h"
 #include "dbss/decoder/topology.h"
 #include "dbss/encoder/encode.h"
 #include "dbss/io/geometry_files.h"
-#include "dbss/measure/surface_samples.h"
 
 using namespace dbss;
-
-namespace {
-
-PointCloud sampled(const TriangleMesh& m, size_t n, uint32_t seed) {
-  const std::vector<double> p = sample_surface(m, n, seed);
-  PointCloud pc;
-  pc.xyz.assign(p.begin(), p.end());
-  return pc;
-}
-
-EncodeOptions options(double angle) {
-  EncodeOptions o;
-  o.levels = 1;
-  o.threads = 2;
-  o.creases.angle_degrees = angle;
-  return o;
-}
-
-}  // namespace
 
 TEST_CASE("no crease on a sampled torus at the seeds that found one, and the file is the one creases off writes") {
   const TriangleMesh torus = test::torus(96, 48);  // crease_bench's torus
   for (uint32_t seed : {2u, 3u}) {
-    const PointCloud pc = sampled(torus, 40000, seed);
-    auto on = encode_points(pc, options(30));
+    const PointCloud pc = test::sampled(torus, 40000, seed);
+    auto on = encode_points(pc, test::crease_options(30, 1));
     REQUIRE(on.ok());
     CHECK(on.value().creases.creases == 0);  // 1 false edge at each seed without the quadric test
     CHECK(on.value().contents.creases.empty());
     if (seed == 2) {
-      auto off = encode_points(pc, options(0));
+      auto off = encode_points(pc, test::crease_options(0, 1));
       REQUIRE(off.ok());
       CHECK(on.value().bytes == off.value().bytes);
     }
@@ -61,8 +42,8 @@ TEST_CASE("no crease on bunny00 sampled (libcgal-demo data, skipped when absent 
   if (!path) return;
   auto mesh = read_mesh(*path);
   REQUIRE(mesh.ok());
-  const PointCloud pc = sampled(mesh.value(), 40000, 1);
-  auto on = encode_points(pc, options(30));
+  const PointCloud pc = test::sampled(mesh.value(), 40000, 1);
+  auto on = encode_points(pc, test::crease_options(30, 1));
   REQUIRE(on.ok());
   // 70 false edges at this seed without the quadric test (the base's rim,
   // rounded tighter than a control edge, and the ears); 7 left with it:
@@ -78,8 +59,8 @@ TEST_CASE("no crease on bunny00 sampled (libcgal-demo data, skipped when absent 
 
 TEST_CASE("the sampled cube keeps its 12 edges tagged with the quadric test") {
   const TriangleMesh cube = test::cube();
-  const PointCloud pc = sampled(cube, 40000, 1);
-  auto e = encode_points(pc, options(30));
+  const PointCloud pc = test::sampled(cube, 40000, 1);
+  auto e = encode_points(pc, test::crease_options(30, 1));
   REQUIRE(e.ok());
   const Encoding& enc = e.value();
   REQUIRE(!enc.contents.creases.empty());
@@ -133,19 +114,19 @@ TEST_CASE("too few crease tags on the sampled camel are dropped and the file is 
   if (!path) return;
   auto mesh = read_mesh(*path);
   REQUIRE(mesh.ok());
-  const PointCloud pc = sampled(mesh.value(), 30000, 1);
-  EncodeOptions keep_all = options(30);
+  const PointCloud pc = test::sampled(mesh.value(), 30000, 1);
+  EncodeOptions keep_all = test::crease_options(30, 1);
   keep_all.creases.min_share = 0;
   auto all = encode_points(pc, keep_all);
   REQUIRE(all.ok());
   // The premise: the detector alone leaves stray tags here.
   REQUIRE(all.value().creases.creases > 0);
-  auto on = encode_points(pc, options(30));
+  auto on = encode_points(pc, test::crease_options(30, 1));
   REQUIRE(on.ok());
   CHECK(on.value().creases.creases == 0);
   CHECK(on.value().creases.too_few_dropped > 0);
   CHECK(on.value().contents.creases.empty());
-  auto off = encode_points(pc, options(0));
+  auto off = encode_points(pc, test::crease_options(0, 1));
   REQUIRE(off.ok());
   CHECK(on.value().bytes == off.value().bytes);
 }

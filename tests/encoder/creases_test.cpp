@@ -8,40 +8,21 @@
 #include <cmath>
 
 #include "../crease_shapes.h"
+#include "../sampled_shapes.h"
 #include "../shapes.h"
 #include "dbss/decoder/progressive.h"
 #include "dbss/encoder/creases.h"
 #include "dbss/encoder/encode.h"
 #include "dbss/format/reader.h"
 #include "dbss/format/writer.h"
-#include "dbss/measure/surface_samples.h"
 
 using namespace dbss;
 
-namespace {
-
-PointCloud sampled(const TriangleMesh& m, size_t n) {
-  const std::vector<double> p = sample_surface(m, n, 3);
-  PointCloud pc;
-  pc.xyz.assign(p.begin(), p.end());
-  return pc;
-}
-
-EncodeOptions options(double angle) {
-  EncodeOptions o;
-  o.levels = 2;
-  o.threads = 2;
-  o.creases.angle_degrees = angle;
-  return o;
-}
-
-}  // namespace
-
 TEST_CASE("no crease on smooth shapes: the file is byte-identical with --crease-angle off") {
   for (const TriangleMesh& m : {test::uv_sphere(24, 32), test::torus(48, 24)}) {
-    const PointCloud pc = sampled(m, 12000);
-    auto on = encode_points(pc, options(30));
-    auto off = encode_points(pc, options(0));
+    const PointCloud pc = test::sampled(m, 12000, 3);
+    auto on = encode_points(pc, test::crease_options(30, 2));
+    auto off = encode_points(pc, test::crease_options(0, 2));
     REQUIRE(on.ok());
     REQUIRE(off.ok());
     CHECK(on.value().creases.creases == 0);
@@ -54,8 +35,8 @@ TEST_CASE("no crease on smooth shapes: the file is byte-identical with --crease-
 }
 
 TEST_CASE("a sampled cube gets crease tags, a 1.1 file the decoder reproduces bit for bit") {
-  const PointCloud pc = sampled(test::cube(), 20000);
-  auto e = encode_points(pc, options(30));
+  const PointCloud pc = test::sampled(test::cube(), 20000, 3);
+  auto e = encode_points(pc, test::crease_options(30, 2));
   REQUIRE(e.ok());
   const Encoding& enc = e.value();
   CHECK(enc.creases.creases > 12);  // the control mesh's edges along the cube's 12 edges

@@ -8,27 +8,22 @@
 #include <cmath>
 
 #include "../crease_shapes.h"
+#include "../sampled_shapes.h"
 #include "dbss/decoder/topology.h"
 #include "dbss/encoder/encode.h"
 #include "dbss/measure/mesh_distance.h"
-#include "dbss/measure/surface_samples.h"
 
 using namespace dbss;
 
 TEST_CASE("a sampled roof block: corner tags on flat lopsided fans keep level 1 inside the roof") {
   const TriangleMesh truth = test::roof_block(8);
-  const std::vector<double> p = sample_surface(truth, 40000, 1);
-  PointCloud pc;
-  pc.xyz.assign(p.begin(), p.end());
+  const PointCloud pc = test::sampled(truth, 40000, 1);
   const double diagonal = 2 * std::sqrt(3.0);
   double mean[2] = {}, worst[2] = {};
   size_t flat[2] = {};
   std::vector<float> control[2];
   for (int now = 0; now < 2; ++now) {
-    EncodeOptions o;
-    o.levels = 1;
-    o.threads = 2;
-    o.creases.angle_degrees = 30;
+    EncodeOptions o = test::crease_options(30, 1);
     o.creases.flat_corners = now == 1;
     auto e = encode_points(pc, o);
     REQUIRE(e.ok());

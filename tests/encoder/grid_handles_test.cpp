@@ -19,7 +19,6 @@
 #include "dbss/encoder/mesh_info.h"
 #include "dbss/encoder/point_index.h"
 #include "dbss/io/geometry_files.h"
-#include "dbss/measure/surface_samples.h"
 
 using namespace dbss;
 
@@ -30,9 +29,7 @@ TEST_CASE("grid search: four handles opening at one grid are the anchor's, not a
   REQUIRE(truth.ok());
   REQUIRE(mesh_info(truth.value()).genus == 4);
   for (uint32_t seed : {1u, 2u, 3u}) {
-    const std::vector<double> p = sample_surface(truth.value(), 40000, seed);
-    PointCloud pc;
-    pc.xyz.assign(p.begin(), p.end());
+    const PointCloud pc = test::sampled(truth.value(), 40000, seed);
     const PointIndex index(pc);
     const CarvingChoice chosen = choose_carving(pc, index);
     // A solid with g handles has Euler characteristic 1 - g.
