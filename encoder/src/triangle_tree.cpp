@@ -2,6 +2,7 @@
 #include "dbss/encoder/triangle_tree.h"
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <limits>
 #include <numeric>
@@ -87,8 +88,27 @@ TriangleTree::TriangleTree(const TriangleMesh& m) {
                              m.positions[3 * size_t{m.triangles[3 * f + 1]} + a] +
                              m.positions[3 * size_t{m.triangles[3 * f + 2]} + a]) / 3;
   // Median splits along the longest axis of the centroids' bounds; nodes are
-  // built in a work list so depth never touches the call stack.
-  nodes_.reserve(2 * (nf / kLeafSize + 1));
+  // built in a work list so depth never touches the call stack.  The node
+  // count is known in advance (a node of c > kLeafSize triangles has children
+  // of c/2 and c - c/2, so each depth holds at most two sizes): reserving it
+  // exactly keeps the vector from doubling while it is built, which on a
+  // finest level was the process's memory peak (leaves hold 3-4 triangles,
+  // so nf / kLeafSize under-counts by about 2x).
+  size_t node_count = 0;
+  for (std::vector<std::pair<size_t, size_t>> depth{{nf, 1}}; !depth.empty();) {
+    std::vector<std::pair<size_t, size_t>> next;  // (size, how many), at most two entries
+    const auto add = [&](size_t c, size_t times) {
+      for (auto& e : next)
+        if (e.first == c) return void(e.second += times);
+      next.emplace_back(c, times);
+    };
+    for (const auto& [c, times] : depth) {
+      node_count += times;
+      if (c > kLeafSize) add(c / 2, times), add(c - c / 2, times);
+    }
+    depth = std::move(next);
+  }
+  nodes_.reserve(node_count);
   nodes_.push_back({{}, {}, 0, static_cast<uint32_t>(nf)});
   for (size_t i = 0; i < nodes_.size(); ++i) {
     const uint32_t first = nodes_[i].first, count = nodes_[i].count;
@@ -117,6 +137,7 @@ TriangleTree::TriangleTree(const TriangleMesh& m) {
     nodes_.push_back({{}, {}, first, half});
     nodes_.push_back({{}, {}, first + half, count - half});
   }
+  assert(nodes_.size() == node_count);
   corners_.resize(9 * nf);
   for (size_t j = 0; j < nf; ++j)
     for (int k = 0; k < 3; ++k)
