@@ -92,6 +92,9 @@ TEST_CASE("lost handle: a tube the scan cut round and the carving capped is warn
     CHECK(e.stages.coarser_genus == r.genus);
     CHECK(e.check.lost_handles == 1);
     CHECK(warned(e, "lost_handle"));
+    // Recorded in the file's meta (and so refused under --strict, as every warning).
+    CHECK(std::any_of(e.contents.metadata.begin(), e.contents.metadata.end(),
+                      [](const auto& m) { return m.key == "warning.lost_handle"; }));
   }
 }
 
