@@ -448,7 +448,7 @@ int main(int argc, char** argv) {
     // How bare the least supported handle is (ScanCheck::bare_handle_reach).
     {
       char b[32];
-      std::snprintf(b, sizeof b, " bare:%.1f", e.check.bare_handle_reach);
+      std::snprintf(b, sizeof b, " bare:%.1f cg:%lld", e.check.bare_handle_reach, static_cast<long long>(e.stages.coarser_genus));
       sweep += b;
     }
 #endif

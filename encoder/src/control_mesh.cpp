@@ -256,6 +256,7 @@ Result<ControlMeshStages> build_control_mesh(const PointIndex& index, const Cont
   const PointCloud& points = index.points();
   ControlMeshStages s;
   int leaking_grid = 0;  // the automatic search stopped at grids this fine that leak (0: none did)
+  int64_t coarser_handles = 0;  // handles coarser grids of the search showed that the chosen one closed
   auto stage = [&](const char* name) {
     if (o.on_stage) o.on_stage(name);
   };
@@ -272,6 +273,7 @@ Result<ControlMeshStages> build_control_mesh(const PointIndex& index, const Cont
     s.cells = std::move(chosen.cells);
     s.carving = chosen.stats;
     leaking_grid = chosen.leaking_grid;
+    coarser_handles = chosen.euler - chosen.coarser_euler;
     s.seconds.grid = since(t), s.cpu_seconds.grid = cpu_since(t);
     t = Clock::now();
   }
@@ -282,6 +284,7 @@ Result<ControlMeshStages> build_control_mesh(const PointIndex& index, const Cont
   auto shell = triangulate_shell(s.cells, true, &s.shell_info);
   if (!shell.ok()) return shell.status();
   s.shell = std::move(shell).value();
+  if (coarser_handles > 0 && s.shell_info.components == 1) s.coarser_genus = s.shell_info.genus + coarser_handles;
   s.seconds.triangulate = since(t), s.cpu_seconds.triangulate = cpu_since(t);
 
   // Open or closed: a carving that encloses next to no volume is a slab

@@ -320,6 +320,9 @@ ScanCheck check_scan(const Encoding& e, const PointIndex& index, unsigned thread
     check_bare_handles(c, e, test, index);
   }
 
+  if (!c.open && info.components == 1 && e.stages.coarser_genus > info.genus)
+    c.lost_handles = static_cast<uint32_t>(e.stages.coarser_genus - info.genus);
+
   const auto warn = [&](const char* code, const std::string& message) { c.warnings.push_back({code, message}); };
   if (c.surface_components != c.point_clusters)
     warn("components", "the surface has " + std::to_string(c.surface_components) + " component(s) where the points form " +
@@ -361,6 +364,12 @@ ScanCheck check_scan(const Encoding& e, const PointIndex& index, unsigned thread
                             "over as a hole, where a real hole's wall would be scanned; or a hole filled round a "
                             "tube's far side); the genus may be too high by as much (scan the gap)");
   }
+  if (c.lost_handles > 0)
+    warn("lost_handle", std::to_string(c.lost_handles) + " handle(s) that the carving showed at coarser grids (genus " +
+                            std::to_string(e.stages.coarser_genus) + ", at three grids in a row) are closed in the surface (genus " +
+                            std::to_string(info.genus) +
+                            "): a tube whose two ends were capped where the scan missed a band round it; the genus may be "
+                            "too low by as much (a scan of the band, or --grid with a coarser grid to keep the handle)");
   if (c.spacing > 0 && c.points_to_surface > kMaxDistance * c.spacing)
     warn("distance", "the points lie " + fmt("%.1f", c.points_to_surface / c.spacing) +
                          " point spacings from the surface on average (bound " + fmt("%.0f", kMaxDistance) +

@@ -65,6 +65,15 @@ struct CarvingChoice {
   CellGrid cells;
   CarvingStats stats;  // stats.grid is the chosen grid
   int leaking_grid = 0;  // the first of the leaking grids that ended the search (0: none leaked)
+  // The search's evidence of a handle the choice closed (check_scan's
+  // lost_handle): the choice's Euler characteristic, and the lowest one that
+  // three consecutive grids coarser than the choice, none leaking, all show
+  // (the highest of the three), or the choice's own when none is lower.
+  // A handle the cells resolve at coarse grids and close at the choice is a
+  // tube whose cut ends the coarse closing still bridged (both 0 when the
+  // grid was given, not searched).
+  int64_t euler = 0;
+  int64_t coarser_euler = 0;
 };
 CarvingChoice choose_carving(const PointCloud& points, const PointIndex& index, int max_grid = 256);
 

@@ -56,6 +56,14 @@ struct ControlMeshStages {
   size_t cut_triangles = 0;
   size_t pinholes = 0;         // sheet: loops of a few cells closed as gaps in the sampling    // open: shell triangles removed (the far side of the sheet, and those with no points near)
   CarvingStats carving;
+  // The genus three consecutive grids of the search coarser than the
+  // chosen one all showed, where it is more than the chosen carving's
+  // (CarvingChoice::coarser_euler): handles the coarse closing still
+  // bridged and the chosen cells closed (check_scan's lost_handle).  0 when
+  // none did, when the grid was given, or when the chosen carving is not
+  // one piece (coarser cells merge nearby parts, which lowers the Euler
+  // characteristic as a handle does).
+  int64_t coarser_genus = 0;
   CellGrid cells;
   TriangleMesh shell;       // triangulated air faces
   TriangleMesh wrapped;     // after shrink-wrapping

@@ -44,6 +44,11 @@ struct ScanCheck {
   // at 2: how far from the scan the least supported handle lies.
   float bare_handle_reach = 0;
   std::vector<std::array<float, 3>> bare_handle_at;  // a point on each bare handle's tunnel, model units
+  // Handles the grid search's coarser carvings showed that the closed,
+  // one-piece surface lacks (ControlMeshStages::coarser_genus less the
+  // surface's genus, at least 0): a tube whose ends the chosen carving
+  // capped where the scan missed a band round it.
+  uint32_t lost_handles = 0;
   std::vector<ScanWarning> warnings;
 };
 
