@@ -9,7 +9,8 @@
 //                    [--shapes torus,double torus] [--truth 20000] [--smoothing 0]
 // With PROBE_VERTICES set, also the mean distance to the truth of the
 // vertices each level added (level 0: the control vertices), and in
-// brackets their mean signed distance (+: outside the shape).
+// brackets their mean signed distance (+: outside the shape).  With
+// PROBE_SIDES set, each side of the two-sided error per level.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -28,13 +29,18 @@ using namespace dbss;
 
 namespace {
 
-double two_sided(const TriangleMesh& level, const test::Shape& s, const std::vector<double>& truth) {
+struct Sides {
+  double level_to_truth = 0, truth_to_level = 0;
+  double mean() const { return 0.5 * (level_to_truth + truth_to_level); }
+};
+
+Sides two_sided(const TriangleMesh& level, const test::Shape& s, const std::vector<double>& truth) {
   const std::vector<double> on_level = sample_surface(level, truth.size() / 3, 5);
   double to_truth = 0, to_level = 0;
   for (size_t i = 0; i < on_level.size(); i += 3) to_truth += std::abs(s.sdf(on_level[i], on_level[i + 1], on_level[i + 2]));
   const TriangleTree tree(level);
   for (size_t i = 0; i < truth.size(); i += 3) to_level += tree.distance(&truth[i]);
-  return 0.5 * (to_truth / static_cast<double>(on_level.size() / 3) + to_level / static_cast<double>(truth.size() / 3));
+  return {to_truth / static_cast<double>(on_level.size() / 3), to_level / static_cast<double>(truth.size() / 3)};
 }
 
 }  // namespace
@@ -90,14 +96,22 @@ int main(int argc, char** argv) {
       const Encoding& enc = e.value();
       std::printf("%-12s seed %u:", s.name, seed);
       double previous = 0;
+      std::vector<Sides> sides;
       for (uint32_t l = 0; l <= enc.level_count; ++l) {
-        const double err = two_sided({enc.levels.positions[l], enc.levels.triangles[l]}, s, truth) / enc.diagonal;
+        sides.push_back(two_sided({enc.levels.positions[l], enc.levels.triangles[l]}, s, truth));
+        const double err = sides.back().mean() / enc.diagonal;
         if (l > 0) {
           std::printf(" %s%.3f", err / previous > 1.02 ? "*" : "", err / previous);
           worst[l] = std::max(worst[l], err / previous);
         }
         previous = err;
         if (l == enc.level_count) floor_sum += err;
+      }
+      if (std::getenv("PROBE_SIDES")) {
+        // Each side of the two-sided error apart: level -> truth (area samples
+        // of the level) / truth -> level (samples of the truth).
+        std::printf("  | level->truth / truth->level");
+        for (const Sides& d : sides) std::printf(" %.3e/%.3e", d.level_to_truth / enc.diagonal, d.truth_to_level / enc.diagonal);
       }
       if (std::getenv("PROBE_VERTICES")) {
         // Mean |distance| to the truth of the vertices each level added (level 0: the control vertices).

@@ -404,6 +404,7 @@ Result<Encoding> encode_points(const PointIndex& input_index, const EncodeOption
   // levels fit by (encode_levels), measured once (its time counted here).
   const PointNoise noise = point_noise(index);
   e.noise = noise.noisy ? noise.noise : 0;
+  e.noisy = noise.noisy, e.quiet = noise.quiet;
   e.seconds.control = since(t);
 
   // (A joined tube may reach past the scan's own box: the box bounds the surface.)

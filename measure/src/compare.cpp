@@ -37,7 +37,14 @@ Result<Comparison> compare_representations(const PointCloud& points, const Encod
   std::vector<DssLevel> dss;
   if (levels) {
     if (o.on_progress) o.on_progress("full-vertex DSS baseline");
-    auto d = encode_dss_baseline(e.control, index, {levels, step, eo.effort});
+    // Sampled as dbss's levels were (encode_levels): the wide fit on a
+    // noisy cloud, the tight kernel and the facet hit on a quiet clean one.
+    // With the clean defaults on noise, the baseline's samples followed the
+    // noise (issue 15 review).
+    DssOptions dso{levels, step, eo.effort};
+    dso.widen = e.noisy;
+    dso.tight = !e.noisy && e.quiet;
+    auto d = encode_dss_baseline(e.control, index, dso);
     if (!d.ok()) return d.status();
     dss = std::move(d).value();
   }

@@ -67,7 +67,8 @@ Result<std::vector<DssLevel>> encode_dss_baseline(const TriangleMesh& control, c
       const double len = edge_n[v] ? edge_sum[v] / edge_n[v] : 0;
       const double p[3] = {domain[3 * size_t{v}], domain[3 * size_t{v} + 1], domain[3 * size_t{v} + 2]};
       const Sample s =
-          sample_displacement(points, p, n, std::max(len, min_radius), 0.5 * std::ldexp(len, static_cast<int>(l)), scratch);
+          sample_displacement(points, p, n, std::max(len, min_radius), 0.5 * std::ldexp(len, static_cast<int>(l)), scratch,
+                              true, nullptr, o.widen, o.tight);
       d.clamped += s.clamped;
       level.q[v] = quantize(s.distance, o.step, dead_zone).q;  // dbss's quantizer and dead zone
       const float dq = static_cast<float>(level.q[v]) * o.step;

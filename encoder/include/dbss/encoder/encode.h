@@ -111,6 +111,8 @@ struct Encoding {
   uint32_t level_count = 0;       // levels in the file (given, or auto_levels)
   double error = 0;               // the error target actually used (from `step` when given)
   double noise = 0;               // the points' noise (points_noise) on a noisy cloud (points_are_noisy), else 0
+  bool noisy = false;             // points_are_noisy: the levels sampled with the wide fit (encode_levels)
+  bool quiet = true;              // points_are_quiet: a clean cloud's levels sampled with the tight kernel
   std::string control_choice;     // which control mesh was kept and why (EncodeOptions::choose_control; `meta` control.choice)
   EncodeTimes seconds;
 };

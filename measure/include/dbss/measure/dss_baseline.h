@@ -19,6 +19,12 @@ struct DssOptions {
   uint32_t levels = 3;
   float step = 0;        // quantization step, model units, > 0 (dbss's step)
   int zstd_level = 19;   // as dbss's --effort
+  // The sampler's kernels, as dbss's levels chose them for the same points
+  // (encode_levels, from point_noise): `widen` on a noisy cloud, `tight`
+  // (with the facet hit) on a quiet clean one; sample_displacement.  The
+  // defaults are a clean cloud's.
+  bool widen = false;
+  bool tight = true;
 };
 
 struct DssLevel {  // level l of the result is element l - 1
