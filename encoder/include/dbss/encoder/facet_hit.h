@@ -11,6 +11,8 @@
 // thirteenth sessions).  Where the points around the line are coplanar, the
 // triangle through three of them is the surface, exactly; where they are
 // not (a bend inside the triangle, or any curved surface) the fit stays.
+// Points that lie on two lines (two rows of a grid-sampled cylinder) do not
+// count as a plane.
 #pragma once
 
 #include "dbss/encoder/point_index.h"
