@@ -11,6 +11,8 @@
 // thirteenth sessions).  Where the points around the line are coplanar, the
 // triangle through three of them is the surface, exactly; where they are
 // not (a bend inside the triangle, or any curved surface) the fit stays.
+// Points that lie on two lines (two rows of a grid-sampled cylinder) do not
+// count as a plane.
 #pragma once
 
 #include "dbss/encoder/point_index.h"
@@ -31,9 +33,15 @@ inline constexpr size_t kFacetPoints = 16;
 inline constexpr int kFacetSupport = 6;
 inline constexpr double kFacetFlatness = 1e-4;
 
+// How the triangles are searched: `pruned` skips only triangles that
+// provably fail (facet_hit.cpp); `all` tries every one of the C(16, 3), the
+// reference the tests compare `pruned` with.  Both give the same t.
+enum class FacetSearch { pruned, all };
+
 // p: the odd vertex; n: its unit normal; t0: the fitted height along n
 // (the sheet); radius: the fit's neighbourhood radius.  On success t is the
 // line's hit on the facet, within half the radius of t0.
-bool facet_hit(const PointIndex& index, const double p[3], const double n[3], double t0, double radius, double& t);
+bool facet_hit(const PointIndex& index, const double p[3], const double n[3], double t0, double radius, double& t,
+               FacetSearch search = FacetSearch::pruned);
 
 }  // namespace dbss
