@@ -9,6 +9,7 @@
 #include "dbss/encoder/crease_lines.h"
 #include "dbss/encoder/facet_hit.h"
 #include "dbss/encoder/point_distances.h"
+#include "dbss/encoder/residual_hit.h"
 
 namespace dbss {
 
@@ -398,10 +399,13 @@ Sample sample_displacement(const PointIndex& index, const double pd[3], const do
       if (f.ok && (std::abs(f.height) <= half_length || std::abs(d) > half_length))
         d = f.height, out.fitted = true, out.spread = f.spread;
       // A clean cloud on a flat facet: the facet, not the fit's rounding of
-      // the bends beside it (facet_hit.h).
+      // the bends beside it (facet_hit.h); elsewhere on a clean cloud the fit
+      // made to pass through the points around the line (residual_hit.h).
       double t = 0;
-      if (out.fitted && tight && !widen && original_sides == nullptr && facet_hit(index, pd, nd, d, f.radius, t) &&
-          std::abs(t) <= half_length)
+      const bool clean = out.fitted && tight && !widen && original_sides == nullptr;
+      if (clean && facet_hit(index, pd, nd, d, f.radius, t) && std::abs(t) <= half_length)
+        d = t;
+      else if (clean && residual_hit(index, pd, nd, f, t) && std::abs(t) <= half_length)
         d = t;
     }
     out.clamped = std::abs(d) > half_length;

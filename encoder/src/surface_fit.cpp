@@ -97,6 +97,7 @@ constexpr double kWiderAgreement = 2.0;
 
 struct Fitted {
   double height = 0, residual = 0;
+  Eigen::Matrix<double, 6, 1> c = Eigen::Matrix<double, 6, 1>::Zero();
   double spread = 0;  // the standard error of height: residual * sqrt(sum w^2) / sum w
 };
 
@@ -128,6 +129,7 @@ bool fit_weighted(FitScratch& s, bool quadric, Kernel kernel, double radius, Fit
   double sw = 0, sww = 0, swr = 0;
   for (size_t i = 0; i < used; ++i) sw += s.w[i], sww += s.w[i] * s.w[i], swr += s.w[i] * std::pow(residual(s, i, c), 2.0);
   out.height = c[0];
+  out.c = c;
   out.residual = sw > 0 ? std::sqrt(swr / sw) : 0;
   out.spread = sw > 0 ? out.residual * std::sqrt(sww) / sw : 0;
   return std::isfinite(out.height);
@@ -154,8 +156,9 @@ double gather(const PointIndex& index, const double p[3], const double n[3], dou
   if (!(radius > 0)) return 0;
   // A frame with n as its third axis.
   const Eigen::Vector3d nz(n[0], n[1], n[2]);
-  const Eigen::Vector3d helper = std::abs(nz.x()) < 0.6 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
-  const Eigen::Vector3d e1 = nz.cross(helper).normalized(), e2 = nz.cross(e1);
+  double f1[3], f2[3];
+  fit_frame(n, f1, f2);
+  const Eigen::Vector3d e1(f1[0], f1[1], f1[2]), e2(f2[0], f2[1], f2[2]);
   const Eigen::Vector3d origin(p[0], p[1], p[2]);
   // Points farther than this from the first estimate along n belong to
   // another sheet (a thin part's other side) or are outliers.
@@ -176,6 +179,13 @@ double gather(const PointIndex& index, const double p[3], const double n[3], dou
 }
 
 }  // namespace
+
+void fit_frame(const double n[3], double e1[3], double e2[3]) {
+  const Eigen::Vector3d nz(n[0], n[1], n[2]);
+  const Eigen::Vector3d helper = std::abs(nz.x()) < 0.6 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
+  const Eigen::Vector3d a = nz.cross(helper).normalized(), b = nz.cross(a);
+  for (int k = 0; k < 3; ++k) e1[k] = a[k], e2[k] = b[k];
+}
 
 SurfaceFit fit_height(const PointIndex& index, const double p[3], const double n[3], double t0, size_t k,
                       FitScratch& s, const PointSides* sides, bool widen, bool tight) {
@@ -229,6 +239,8 @@ SurfaceFit fit_height(const PointIndex& index, const double p[3], const double n
   out.spread = error;
   out.points = static_cast<uint32_t>(used);
   out.radius = radius;
+  for (int k = 0; k < 6; ++k) out.coef[k] = narrow.c[k];
+  out.blend = blend;
   return out;
 }
 

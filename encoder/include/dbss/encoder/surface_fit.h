@@ -47,7 +47,16 @@ struct SurfaceFit {
   uint32_t points = 0;  // points the fit used
   double radius = 0;    // the neighbourhood's radius (model units)
   double spread = 0;    // standard error of `height` from the points' scatter (model units): how far the fit itself may be off
+  // The first (narrow or tight) fit's height field in the line's frame
+  // (fit_frame): h = c0 + c1 u + c2 v + c3 u^2 + c4 uv + c5 v^2, u and v in
+  // units of `radius`; `blend` is the share of the wide fit in `height`
+  // (0 on clean clouds), when the field is not the whole of it.
+  double coef[6] = {};
+  double blend = 0;
 };
+
+// The frame fit_height uses for the line along the unit n: e1, e2 normal to it.
+void fit_frame(const double n[3], double e1[3], double e2[3]);
 
 // p: the odd vertex; n: its unit normal; t0: a first estimate of the
 // surface along the line (the sampler's hit, which picks the sheet of a thin
