@@ -28,6 +28,8 @@
 //     settings run by run at half the cost
 //   --against-no-wedge: likewise without the wedge sampling next to creases (CreaseOptions::wedge)
 //   --against-no-wedge-gate: likewise with the wedge anywhere, not only near tagged edges (CreaseOptions::wedge_gate)
+//   --against-sides-everywhere: likewise with every sample of a tagged file one-sided, with the wide kernel and no
+//     facet hit (CreaseOptions::clean_away off): the fourteenth session's before/after
 //   --seed S: the point sampling's seed (default 1): crease figures swing with it (and with
 //     QEM's tie order), so judge a change over several
 //   --fixed-control: the default face count, not chosen by rate-distortion (EncodeOptions::choose_control)
@@ -189,7 +191,7 @@ int main(int argc, char** argv) {
   double noise = 0;
   double angle = 30, flat_fan = dbss::CreaseOptions{}.flat_fan_degrees;
   std::vector<std::string> shapes;
-  bool skip_absent = false, shaping = true, split = false, against_no_collapse = false, against_no_wedge = false, against_no_relax = false, against_beside = false, against_no_gate = false, against_no_vflips = false, against_no_flat_corners = false, fixed_control = false, collapse = false, on_only = false;
+  bool skip_absent = false, shaping = true, split = false, against_no_collapse = false, against_no_wedge = false, against_no_relax = false, against_beside = false, against_no_gate = false, against_no_vflips = false, against_no_flat_corners = false, against_sides_everywhere = false, fixed_control = false, collapse = false, on_only = false;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--points" && i + 1 < argc) points = std::strtoull(argv[++i], nullptr, 10);
@@ -206,6 +208,7 @@ int main(int argc, char** argv) {
     else if (a == "--against-no-relax") against_no_relax = true;
     else if (a == "--against-relax-beside") against_beside = true;
     else if (a == "--against-no-wedge-gate") against_no_gate = true;
+    else if (a == "--against-sides-everywhere") against_sides_everywhere = true;
     else if (a == "--against-no-valence-flips") against_no_vflips = true;
     else if (a == "--against-no-flat-corners") against_no_flat_corners = true;
     else if (a == "--flat-fan" && i + 1 < argc) flat_fan = std::atof(argv[++i]);
@@ -254,7 +257,7 @@ int main(int argc, char** argv) {
     for (int on = on_only ? 1 : 0; on < 2; ++on) {
       dbss::EncodeOptions eo;
       eo.levels = levels;
-      const bool against = against_no_collapse || against_no_wedge || against_no_relax || against_beside || against_no_gate || against_no_vflips || against_no_flat_corners;
+      const bool against = against_no_collapse || against_no_wedge || against_no_relax || against_beside || against_no_gate || against_no_vflips || against_no_flat_corners || against_sides_everywhere;
       eo.creases.angle_degrees = on || against ? angle : 0;
       // 'on': the defaults (with --collapse, collapses too); 'off' with an
       // --against-no-X: the same less X.
@@ -264,6 +267,7 @@ int main(int argc, char** argv) {
       eo.creases.relax = defaults.relax && (on || !against_no_relax);
       eo.creases.relax_beside_lines = against_beside ? on != 0 : defaults.relax_beside_lines && (on || !against_no_vflips);
       eo.creases.wedge_gate = defaults.wedge_gate && (on || !against_no_gate);
+      eo.creases.clean_away = defaults.clean_away && (on || !against_sides_everywhere);
       eo.creases.valence_flips = defaults.valence_flips && (on || !against_no_vflips);
       eo.creases.untag_flat = defaults.untag_flat && (on || !against_no_vflips);
       eo.creases.flat_corners = defaults.flat_corners && (on || !against_no_flat_corners);
@@ -284,6 +288,8 @@ int main(int argc, char** argv) {
       if (const char* r = std::getenv("CREASE_BENCH_RUNS")) eo.creases.chain_run_ratio = std::atof(r);
       // CREASE_BENCH_MINSHARE=S: CreaseOptions::min_share (0: any tag kept, as before it).
       if (const char* r = std::getenv("CREASE_BENCH_MINSHARE")) eo.creases.min_share = std::atof(r);
+      // CREASE_BENCH_DARTS=R: CreaseOptions::max_dart_share (0: tags in pieces kept, as before it).
+      if (const char* r = std::getenv("CREASE_BENCH_DARTS")) eo.creases.max_dart_share = std::atof(r);
       eo.control.shape.enabled = shaping;
       eo.creases.split = split;
       eo.choose_control = !fixed_control;
@@ -355,9 +361,9 @@ int main(int argc, char** argv) {
     }
     const Run& r = runs[1];
     std::printf("### %s\n", shape.c_str());
-    for (int on = against_no_collapse || against_no_wedge || against_no_relax || against_beside || against_no_gate || against_no_vflips || against_no_flat_corners ? 0 : 1; on < 2; ++on) {
+    for (int on = against_no_collapse || against_no_wedge || against_no_relax || against_beside || against_no_gate || against_no_vflips || against_no_flat_corners || against_sides_everywhere ? 0 : 1; on < 2; ++on) {
       const dbss::CreaseStats& s = runs[on].stats;
-      if (against_no_collapse || against_no_wedge || against_no_relax || against_beside || against_no_gate || against_no_vflips || against_no_flat_corners) std::printf("%s: ", on ? "after" : "before");
+      if (against_no_collapse || against_no_wedge || against_no_relax || against_beside || against_no_gate || against_no_vflips || against_no_flat_corners || against_sides_everywhere) std::printf("%s: ", on ? "after" : "before");
       std::printf("aligned: %zu vertices moved onto feature lines, %zu merged into a neighbour on one, %zu flat-face moves, %zu flat edges flipped toward valence 6, %zu edges flipped and %zu split along "
                   "them, %zu chain edges; creases: %zu edges, %zu corners (%zu on flat fans, %zu dropped by the check), %zu darts, feature length %.3f; tags %zu bytes\n",
                   s.aligned, s.align_collapses, s.align_relaxed, s.align_valence_flips, s.align_flips, s.align_splits, s.chain_edges, s.creases, s.corners + s.flat_corners, s.flat_corners, s.flat_corners_dropped, s.darts,
@@ -368,9 +374,9 @@ int main(int argc, char** argv) {
                 "diagonal); feature length found %.3f, true %.3f (diagonals); tags %zu bytes\n\n",
                 r.stats.creases, r.stats.edges_tested, r.stats.gaps_closed, r.stats.corners, r.stats.darts, r.stats.snapped, r.stats.max_snap / diag,
                 r.length / diag, true_length / diag, r.tag_bytes);
-    std::printf("tags against the true features: %zu true, %zu false edges, missed %.3f of %.3f (diagonals), %zu smooth-rejected, %zu untagged in lone short chain runs, %zu untagged as too few\n\n",
+    std::printf("tags against the true features: %zu true, %zu false edges, missed %.3f of %.3f (diagonals), %zu smooth-rejected, %zu untagged in lone short chain runs, %zu untagged as too few, %zu as in pieces\n\n",
                 r.tags.truly, r.tags.falsely, r.tags.missed / diag, r.tags.total / diag, r.stats.smooth_rejected, r.stats.chain_runs_dropped,
-                r.stats.too_few_dropped);
+                r.stats.too_few_dropped, r.stats.in_pieces_dropped);
     // The file on against off (smooth shapes: a mesh left without tags is
     // given back unaligned, so the same bytes), and what detection costs.
     if (!on_only)

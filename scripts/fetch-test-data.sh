@@ -19,6 +19,7 @@ files=(
   data/meshes/camel.off                          # mesh input's needle rule (control_needle_test)
   data/meshes/cow.off                            # mesh input's control size choice (mesh_control_choice_test)
   data/meshes/anchor.off                         # grid_handles_test (four handles opening at one grid)
+  data/meshes/couplingdown.off                   # crease_pieces_test (a coarse faceted part whose tags come in pieces)
   data/points_3/kitten.xyz
   data/points_3/hippo1.ply
   data/points_3/half.xyz

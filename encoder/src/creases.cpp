@@ -645,6 +645,12 @@ format::Creases find_creases(TriangleMesh& mesh, const PointIndex& points, const
     st.too_few_dropped = st.creases;
     st.creases = 0, st.corners = 0, st.darts = 0;
   }
+  // In pieces (CreaseOptions::max_dart_share): a feature the control mesh
+  // does not resolve, tagged where a stretch of it passed the test.
+  if (st.creases > 0 && o.max_dart_share > 0 && static_cast<double>(st.darts) > o.max_dart_share * static_cast<double>(st.creases)) {
+    st.in_pieces_dropped = st.creases;
+    st.creases = 0, st.corners = 0, st.darts = 0;
+  }
   if (st.creases == 0) {
     mesh.positions = unaligned, mesh.triangles = unaligned_triangles;
     if (stats) *stats = st;

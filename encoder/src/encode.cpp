@@ -174,6 +174,7 @@ Status encode_over_control(Encoding& e, const PointIndex& index, const PointNois
   lo.creases = c.creases;
   lo.wedge = o.creases.wedge;
   lo.wedge_gate = o.creases.wedge_gate;
+  lo.clean_away = o.creases.clean_away;
   lo.smooth_noise = o.smooth_noise;
   if (o.on_progress)
     lo.on_level = [&](uint32_t l) {

@@ -145,6 +145,7 @@ Result<EncodedLevels> encode_levels(const TriangleMesh& control, const PointInde
       // wedge off everywhere; PointSides::lines null means no gate.)
       if (!lines->empty()) sides.lines = lines.get();
     }
+    sides.clean_where_agreed = o.clean_away;
   }
   // On a noisy cloud the fit may widen (surface_fit.h); a clean one keeps
   // its narrow fits, byte for byte.

@@ -117,6 +117,9 @@ TEST_CASE("too few crease tags on the sampled camel are dropped and the file is 
   const PointCloud pc = test::sampled(mesh.value(), 30000, 1);
   EncodeOptions keep_all = test::crease_options(30, 1);
   keep_all.creases.min_share = 0;
+  // (The dart gate, max_dart_share, would drop them too: a lone stray edge
+  // is two darts.  Off here, so this tests min_share alone.)
+  keep_all.creases.max_dart_share = 0;
   auto all = encode_points(pc, keep_all);
   REQUIRE(all.ok());
   // The premise: the detector alone leaves stray tags here.

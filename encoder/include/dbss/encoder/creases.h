@@ -69,6 +69,16 @@ struct CreaseOptions {
   // else a smooth region curved tightly enough (radius about 1.5 times the
   // wedge's 32-point neighbourhood) can pass for two planes.
   bool wedge_gate = true;
+  // One-sided sampling (the points whose normals agree with the line's)
+  // only where the fit's own points do not all agree; where they do, a
+  // clean cloud's sample, with the tight kernel and the facet hit
+  // (sampling.cpp).  Off (the default): every sample of a tagged file
+  // one-sided, with the wide kernel.  Measured (bench/crease_bench.md,
+  // fourteenth session): L3 error -4% to +1.6% on ten parts, but L3
+  // Hausdorff up on the cylinder (0.99 -> 1.11%, over the 1% bound), the
+  // rotor and the turbine, so it stays off until the rim vertex it no longer
+  // pulls back is understood.
+  bool clean_away = false;
   // Relax the flat faces' vertices in their plane after the alignment
   // (crease_align.h).  It once raised the fandisk's level 1 (3.1e-4 ->
   // 4.6e-4): not the relaxation itself but the sampler, which on the
@@ -159,6 +169,17 @@ struct CreaseOptions {
   // 0.9%), the smooth shapes' stray tags 0.03-0.05%
   // (bench/crease_bench.md, thirteenth session).  <= 0: any tag is kept.
   double min_share = 0.005;
+  // Tags are kept only when their darts (crease ends that are not corners)
+  // are at most this share of the crease edges; more, and the tags are in
+  // pieces: features the control mesh does not resolve (couplingdown's
+  // narrow chamfers and thin rims, the rotor's blades), whose tags made the
+  // file worse than none.  The mesh is given back unaligned with no tag, as
+  // for min_share.  Measured (bench/crease_bench.md, fourteenth session;
+  // 40,000 points, seeds 1-2): the fandisk, anchor, part, joint, spool,
+  // turbine, cube, cylinder and roof 0.10-0.34; couplingdown 0.66 (level 3
+  // +12% error creases on), the rotor 0.77 and 0.47 (at 0.47 level 3 +1.4%
+  // error, +4.6% bytes, Hausdorff 1.50 -> 2.56% creases on).  <= 0: no test.
+  double max_dart_share = 0.4;
 };
 
 struct CreaseStats {
@@ -178,6 +199,7 @@ struct CreaseStats {
   size_t flat_corners = 0;  // smooth vertices of flat, irregular fans tagged corner (CreaseOptions::flat_corners)
   size_t flat_corners_dropped = 0;  // of those chosen, untagged by the check (CreaseOptions::flat_fan_check)
   size_t too_few_dropped = 0;  // crease edges found but untagged, too few to pay for a tagged file (CreaseOptions::min_share)
+  size_t in_pieces_dropped = 0;  // crease edges found but untagged, too many darts among them (CreaseOptions::max_dart_share)
 };
 
 // First aligns `mesh` to the feature lines (align_to_features: vertices

@@ -30,6 +30,7 @@ struct LevelEncodeOptions {
   format::Creases creases;  // the control mesh's crease tags (empty: none), as the file holds them
   bool wedge = true;        // with creases: CreaseOptions::wedge
   bool wedge_gate = true;   // ... only near a tagged edge: CreaseOptions::wedge_gate
+  bool clean_away = false;  // ... one-sided only where the fit sees a feature: CreaseOptions::clean_away
   // Rate-distortion optimised quantization (rdo_quantize.h) of levels
   // rdo_first_level and finer, with this lambda in squared steps per bit;
   // 0: plain rounding.  Not with creases.

@@ -34,6 +34,10 @@ struct PointSides {
   bool wedge = true;
   // The wedge only within reach of these tagged crease edges; null: anywhere.
   const CreaseLines* lines = nullptr;
+  // A sample whose fit's points all agree is a clean cloud's: the fit over
+  // all the points with the tight kernel, and the facet hit (sampling.cpp).
+  // False: every sample one-sided, with the wide kernel.
+  bool clean_where_agreed = false;
   bool agrees(uint32_t i, const double n[3]) const {
     const float* m = normals->data() + 3 * size_t{i};
     return std::abs(m[0] * n[0] + m[1] * n[1] + m[2] * n[2]) >= min_cos;
