@@ -18,6 +18,17 @@ using V = Eigen::Vector3d;
 // Two points are of one sheet when their offsets along the sampling line
 // differ by at most this times the sum of their distances from it.
 constexpr double kSteep = 3;
+// The same when every candidate's own normal agrees with the line's
+// (one-sided sampling next to creases, PointSides): a sheet then leans at
+// most 30 degrees across the line (a slope of 0.58); 1 leaves room for the
+// normals' error.  At kSteep the two faces of a thin part (the fandisk's
+// flange, 0.04 thick, its normals parallel) were one sheet wherever the 7
+// points nearest the line were mostly the other face's: the triangles of
+// two points of one face and one of the other hit between the faces, and
+// the level-1 odd vertex went 0.016-0.018 inside (the fandisk's level-3
+// Hausdorff point at seeds 1 and 2, bench/crease_bench.md, fourteenth
+// session).
+constexpr double kSteepOneSided = 1;
 // The fallback plane's points when the cylinder holds two sheets.
 constexpr size_t kPlanePoints = 16;
 constexpr double kAnchorReach = 1.5;
@@ -449,7 +460,8 @@ Sample sample_displacement(const PointIndex& index, const double pd[3], const do
     // candidates are the sheet's: of the points about as near the line as
     // the 7 nearest (within kAnchorReach of the 7th: some of them on each
     // face), the one nearest the vertex along it anchors the sheet, and a point counts
-    // when a surface through both could pass (rising at most kSteep times
+    // when a surface through both could pass (rising at most kSteep times,
+    // kSteepOneSided when the candidates are one side's,
     // its run, about 72 degrees to the plane normal to the line).  Else,
     // where a thin part's other face is as near the line as its own (the
     // fandisk's flange: faces 0.1 apart, points 0.005 apart), triangles of
@@ -462,8 +474,9 @@ Sample sample_displacement(const PointIndex& index, const double pd[3], const do
     Cand anchor = cyl[0];
     for (const Cand& x : cyl)
       if (x.horizontal <= kAnchorReach * cyl[first - 1].horizontal && std::abs(x.vertical) < std::abs(anchor.vertical)) anchor = x;
+    const double steep = sides ? kSteepOneSided : kSteep;
     const auto on_sheet = [&](const Cand& c) {
-      return std::abs(c.vertical - anchor.vertical) <= kSteep * (c.horizontal + anchor.horizontal);
+      return std::abs(c.vertical - anchor.vertical) <= steep * (c.horizontal + anchor.horizontal);
     };
     // One sheet (every point of the cylinder on it, as on any smooth shape
     // whose curvature radius is over the cylinder's): the candidates and
