@@ -103,7 +103,7 @@ TEST_CASE("the libcgal-demo fandisk (seed 2) under the default options: level 3 
   REQUIRE(read.ok());
   const TriangleMesh truth = std::move(read).value();
   const double diag = diagonal(truth);
-  auto e = encode_points(sampled(truth, 40000, 2), command_options({}, 3));
+  auto e = encode_points(test::sampled(truth, 40000, 2), command_options({}, 3));
   REQUIRE(e.ok());
   const Encoding& enc = e.value();
   REQUIRE(!enc.contents.creases.empty());
