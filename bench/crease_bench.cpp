@@ -28,7 +28,7 @@
 //     settings run by run at half the cost
 //   --against-no-wedge: likewise without the wedge sampling next to creases (CreaseOptions::wedge)
 //   --against-no-wedge-gate: likewise with the wedge anywhere, not only near tagged edges (CreaseOptions::wedge_gate)
-//   --against-sides-everywhere: likewise with every sample of a tagged file one-sided, with the wide kernel and no
+//   --against-sides-everywhere: likewise with every sample of a tagged file one-sided, with the narrow kernel and no
 //     facet hit (CreaseOptions::clean_away off): the fourteenth session's before/after
 //   --seed S: the point sampling's seed (default 1): crease figures swing with it (and with
 //     QEM's tie order), so judge a change over several
@@ -267,7 +267,7 @@ int main(int argc, char** argv) {
       eo.creases.relax = defaults.relax && (on || !against_no_relax);
       eo.creases.relax_beside_lines = against_beside ? on != 0 : defaults.relax_beside_lines && (on || !against_no_vflips);
       eo.creases.wedge_gate = defaults.wedge_gate && (on || !against_no_gate);
-      eo.creases.clean_away = defaults.clean_away && (on || !against_sides_everywhere);
+      eo.creases.clean_away = against_sides_everywhere ? on != 0 : defaults.clean_away;
       eo.creases.valence_flips = defaults.valence_flips && (on || !against_no_vflips);
       eo.creases.untag_flat = defaults.untag_flat && (on || !against_no_vflips);
       eo.creases.flat_corners = defaults.flat_corners && (on || !against_no_flat_corners);

@@ -17,7 +17,7 @@ using V = Eigen::Vector3d;
 // search_pruned's margin for the emptiness step, relative to m^2 + 4 R^2:
 // four orders of magnitude above what it must cover (1e-9 + 1e-10).
 constexpr double kLiftSlack = 1e-6;
-static_assert(kFacetPoints <= 32, "the pruned search keeps the points in 32-bit masks");
+static_assert(kFacetPoints < 32, "the pruned search keeps the points in 32-bit masks (1u << n with n < 32)");
 
 // The points nearest the foot, relative to p, and their coordinates (x, y)
 // in the plane normal to the line, whose trace there is the origin.
@@ -170,7 +170,9 @@ double search_pruned(const Frame& f, double t0, double radius, double& t) {
   // Step 1: cross[p][q], computed as the containment test computes its
   // numerators (x[p] y[q] - x[q] y[p]; the other order is its negation,
   // exactly, as rounding to nearest is symmetric, and 0 - c gives +0 where
-  // the difference is 0); its sign counts only beyond `side`.
+  // the difference is 0); its sign counts only beyond `side`.  Both this
+  // and the containment test rely on the build's -ffp-contract=off
+  // (CMakeLists.txt): a fused multiply-add would round the two differently.
   const double side = 1e-13 * m2;
   std::array<std::array<double, kFacetPoints>, kFacetPoints> cross;
   std::array<uint32_t, kFacetPoints> pos{}, neg{};

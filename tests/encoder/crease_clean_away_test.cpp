@@ -2,7 +2,7 @@
 // clean_away, sampling.cpp): where the fit's own points all face the
 // line's way, the sample is a clean cloud's, with the tight kernel and the
 // facet hit; before, a file with any crease tag sampled every vertex
-// one-sided with the wide kernel, on a machined part's faces too.
+// one-sided with the narrow kernel, on a machined part's faces too.
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -68,7 +68,7 @@ TEST_CASE("a tagged file's sample whose fit's points all agree takes the clean c
   // Measured: no sides 1.849e-5, clean where agreed 1.852e-5 (the
   // cylinder's hit is still taken from the agreeing points, which a few
   // lines' neighbourhoods beside the ridge lack), one-sided everywhere
-  // 8.48e-5: the wide kernel rounds the bend.
+  // 8.48e-5: the narrow kernel rounds the bend.
   CHECK(away < 1.05 * clean);
   CHECK(away < 4e-5);  // facet_hit_test's bound for a clean cloud
   CHECK(one_sided > 2 * away);

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <vector>
 
+#include "../sampled_shapes.h"
 #include "../test_data.h"
 #include "dbss/encoder/encode.h"
 #include "dbss/io/geometry_files.h"
@@ -18,34 +19,15 @@
 
 using namespace dbss;
 
-namespace {
-
-PointCloud sampled(const TriangleMesh& m, size_t n, uint32_t seed) {
-  const std::vector<double> p = sample_surface(m, n, seed);
-  PointCloud pc;
-  pc.xyz.assign(p.begin(), p.end());
-  return pc;
-}
-
-EncodeOptions options(double angle, uint32_t levels) {
-  EncodeOptions o;
-  o.levels = levels;
-  o.threads = 2;
-  o.creases.angle_degrees = angle;
-  return o;
-}
-
-}  // namespace
-
 TEST_CASE("couplingdown's tags in pieces are dropped and creases on is no worse than off") {
   const auto path = test::scan_data("data/meshes/couplingdown.off");
   if (!path) return;
   auto read = read_mesh(*path);
   REQUIRE(read.ok());
   const TriangleMesh truth = std::move(read).value();
-  const PointCloud pc = sampled(truth, 30000, 1);
-  auto on = encode_points(pc, options(30, 3));
-  auto off = encode_points(pc, options(0, 3));
+  const PointCloud pc = test::sampled(truth, 30000, 1);
+  auto on = encode_points(pc, test::crease_options(30, 3));
+  auto off = encode_points(pc, test::crease_options(0, 3));
   REQUIRE(on.ok());
   REQUIRE(off.ok());
   // The detector ran and found crease edges, most ending in darts.

@@ -73,7 +73,7 @@ struct CreaseOptions {
   // only where the fit's own points do not all agree; where they do, a
   // clean cloud's sample, with the tight kernel and the facet hit
   // (sampling.cpp).  Off (the default): every sample of a tagged file
-  // one-sided, with the wide kernel.  Measured (bench/crease_bench.md,
+  // one-sided, with the narrow kernel.  Measured (bench/crease_bench.md,
   // fourteenth session): L3 error -4% to +1.6% on ten parts, but L3
   // Hausdorff up on the cylinder (0.99 -> 1.11%, over the 1% bound), the
   // rotor and the turbine, so it stays off until the rim vertex it no longer

@@ -36,7 +36,7 @@ struct PointSides {
   const CreaseLines* lines = nullptr;
   // A sample whose fit's points all agree is a clean cloud's: the fit over
   // all the points with the tight kernel, and the facet hit (sampling.cpp).
-  // False: every sample one-sided, with the wide kernel.
+  // False: every sample one-sided, with the narrow kernel.
   bool clean_where_agreed = false;
   bool agrees(uint32_t i, const double n[3]) const {
     const float* m = normals->data() + 3 * size_t{i};
