@@ -37,6 +37,19 @@ inline EncodeOptions crease_options(double angle, uint32_t levels) {
   return o;
 }
 
+// The roof z = s |x| (bending by 2 atan(s) at x = 0), 10k area-uniform
+// points on [-1, 1]^2 (spacing about 0.02), no noise, seed 5.
+inline PointCloud roof_cloud(double s) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-1, 1);
+  PointCloud pc;
+  for (int i = 0; i < 10000; ++i) {
+    const double x = u(rng), y = u(rng);
+    pc.xyz.insert(pc.xyz.end(), {float(x), float(y), float(s * std::abs(x))});
+  }
+  return pc;
+}
+
 // n points on the unit sphere with Gaussian noise of `sigma` along the radius.
 inline PointCloud noisy_sphere(size_t n, double sigma, uint32_t seed) {
   std::mt19937 rng(seed);

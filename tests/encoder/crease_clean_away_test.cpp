@@ -5,6 +5,8 @@
 // one-sided with the narrow kernel, on a machined part's faces too.
 #include <catch2/catch.hpp>
 
+#include "../sampled_shapes.h"
+
 #include <cmath>
 #include <numbers>
 #include <random>
@@ -22,16 +24,7 @@ namespace {
 // angle: every point's normal within 15 degrees of the vertical), 10k
 // area-uniform points on [-1, 1]^2 (spacing about 0.02), no noise; as
 // facet_hit_test samples it.
-PointCloud roof(double s) {
-  std::mt19937 rng(5);
-  std::uniform_real_distribution<double> u(-1, 1);
-  PointCloud pc;
-  for (int i = 0; i < 10000; ++i) {
-    const double x = u(rng), y = u(rng);
-    pc.xyz.insert(pc.xyz.end(), {float(x), float(y), float(s * std::abs(x))});
-  }
-  return pc;
-}
+PointCloud roof(double s) { return test::roof_cloud(s); }
 
 // Mean |sampled - exact| over vertical lines 1 to 3 spacings from the
 // ridge, 0.02 above the roof, sampled with `sides`.

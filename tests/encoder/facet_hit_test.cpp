@@ -20,16 +20,7 @@ namespace {
 
 // The roof z = s |x| bending by 30 degrees at x = 0, 10k area-uniform points
 // on [-1, 1]^2 (spacing about 0.02), no noise.
-PointCloud roof(double s) {
-  std::mt19937 rng(5);
-  std::uniform_real_distribution<double> u(-1, 1);
-  PointCloud pc;
-  for (int i = 0; i < 10000; ++i) {
-    const double x = u(rng), y = u(rng);
-    pc.xyz.insert(pc.xyz.end(), {float(x), float(y), float(s * std::abs(x))});
-  }
-  return pc;
-}
+PointCloud roof(double s) { return test::roof_cloud(s); }
 
 // The cylinder x^2 + y^2 = 1, |z| < 1, sampled on a regular grid in
 // (angle, height) as a turntable scanner would: `around` x `along` points.
