@@ -5,7 +5,7 @@
 // bounding-box diagonal (measure/mesh_distance).  Also: dbss's QEM against
 // meshoptimizer's simplifier for the control mesh.
 //
-//   lod_bench [--levels N] [--control-faces F] [--control-bits B] [--cut-holes H] [--hole-radius R] [--cut-only] [--loop-faces N] [--hole-tolerance T] [--hole-faces-per-vertex C] [--errors E1,E2,..] [--samples N] [--detail] [--quick] [--no-search] [--dense-step-ratio R] [--plain-rounding] [--control-grid S] [--no-boundary-values] [--fixed-control] [--floor-ratio R] [--bdry-levels MASK] [--bdry-always] [--rdo LAMBDA] [--rdo-from LEVEL] [--skip-absent] MESH...
+//   lod_bench [--levels N|auto] [--control-faces F] [--control-bits B] [--cut-holes H] [--hole-radius R] [--cut-only] [--loop-faces N] [--hole-tolerance T] [--hole-faces-per-vertex C] [--errors E1,E2,..] [--samples N] [--detail] [--quick] [--no-search] [--dense-step-ratio R] [--plain-rounding] [--control-grid S] [--no-boundary-values] [--fixed-control] [--floor-ratio R] [--bdry-levels MASK] [--bdry-always] [--rdo LAMBDA] [--rdo-from LEVEL] [--max-chain-ratio R] [--skip-absent] MESH...
 //
 // With no MESH: the libcgal-demo meshes under test-data/ (closed, with
 // holes, several components); --cut-holes H adds each mesh again with H
@@ -47,12 +47,13 @@ double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::
 constexpr int kDracoSpeed = 3;
 
 struct Args {
-  uint32_t levels = 4;
+  uint32_t levels = 4;  // --levels auto: kAutoLevels, as `dbss encode`'s default (the file's own level count)
   uint32_t control_faces = 0;  // 0: the encoder's default
   int control_bits = 0;        // Draco's position bits for the control mesh; 0: the encoder's (from the step)
   std::vector<double> errors = {1e-4, 3e-5};
   size_t samples = 100000;
   bool skip_absent = false;
+  double max_chain_ratio = 0;  // --max-chain-ratio R: exit 1 when the .dbss is over R x the LOD chain (ctest)
   bool detail = false;  // --detail: where each level's bytes and error go
   bool quick = false;   // --quick: no simplifier comparison, no decode timing (for sweeps)
   bool no_search = false;  // --no-search: the equal-error table on the targets' grid only
@@ -185,6 +186,7 @@ class TargetCurve {
   // A level measured elsewhere (the grid's encodings).
   void seed(double target, uint32_t level, uint64_t prefix, double error) {
     Point& p = points_[target];
+    levels_ = std::max(levels_, level);
     if (p.prefix.size() <= level) p.prefix.resize(level + 1, 0), p.error.resize(level + 1, 0);
     p.prefix[level] = prefix;
     p.error[level] = error;
@@ -195,7 +197,7 @@ class TargetCurve {
   // kSearchTolerance under `want`; none when no level reaches it.
   std::optional<Found> smallest_prefix_at(double want) {
     std::optional<Found> best;
-    for (uint32_t l = 0; l <= args_.levels; ++l) {
+    for (uint32_t l = 0; l <= levels_; ++l) {
       // Levels whose error does not depend on the target (the control
       // mesh's rounding aside) still count: level 0 is read off as is.
       double lo = 0, hi = 0;  // lo: largest target with error <= want; hi: smallest above lo with error > want
@@ -264,7 +266,9 @@ class TargetCurve {
   }
 
   bool measure(double target) {
-    if (auto it = points_.find(target); it != points_.end() && it->second.prefix.size() == args_.levels + 1 &&
+    // (With --levels auto each encoding has its own level count: a target
+    // seen with every level it has is known.)
+    if (auto it = points_.find(target); it != points_.end() && !it->second.prefix.empty() &&
                                         std::find(it->second.prefix.begin(), it->second.prefix.end(), 0) == it->second.prefix.end())
       return false;  // already known: the search is not moving
     const auto t0 = Clock::now();
@@ -287,6 +291,7 @@ class TargetCurve {
       p.prefix.push_back(prefix_bytes(en, l));
       p.error.push_back(mesh_distance(m, input_, mo_).mean() / diag_);
     }
+    levels_ = std::max(levels_, en.level_count);
     points_[target] = std::move(p);
     ++encodings_;
     seconds_ += since(t0);
@@ -298,6 +303,7 @@ class TargetCurve {
   double diag_;
   MeshDistanceOptions mo_;
   std::map<double, Point> points_;
+  uint32_t levels_ = 0;  // the most levels any encoding had (with --levels auto they differ)
   size_t encodings_ = 0, candidates_ = 0, larger_ = 0;
   double seconds_ = 0;
 };
@@ -396,8 +402,22 @@ int run_mesh(const std::string& path, Args args, uint32_t holes = 0) {
       return 1;
     }
     const Encoding& en = e.value().encoding;
-    std::printf("\ndbss from the mesh, error target %g: encode %.2f s (QEM %.2f s, casting %.2f s), %zu bytes\n\n", err, enc_s,
-                en.seconds.control, en.seconds.levels, en.bytes.size());
+    std::printf("\ndbss from the mesh, error target %g: encode %.2f s (QEM %.2f s, casting %.2f s), %zu bytes, %u levels%s\n\n", err,
+                enc_s, en.seconds.control, en.seconds.levels, en.bytes.size(), en.level_count,
+                args.levels == kAutoLevels ? " (auto)" : "");
+    {
+      const format::Header& h = en.contents.header;
+      const format::MeshCounts control{h.control_vertex_count, h.control_edge_count, h.control_triangle_count};
+      // `dbss encode`'s default (auto_levels: the first level with more
+      // vertices than the input), beside the first level with the input's
+      // triangles, the count the chain below stores the input for.
+      uint32_t by_triangles = 1;
+      while (by_triangles < format::kMaxLevelsInPractice && format::counts_at_level(control, by_triangles) &&
+             format::counts_at_level(control, by_triangles)->triangles < input.triangle_count())
+        ++by_triangles;
+      std::printf("auto levels here: %u (first level with more vertices than the input; with at least its triangles: %u)\n\n",
+                  auto_levels(control, input.vertex_count()), by_triangles);
+    }
     if (!en.control_choice.empty()) std::printf("control choice (%.2f s): %s\n\n", en.seconds.choice, en.control_choice.c_str());
     std::printf("| level | triangles | prefix bytes | error | decode ms (levels 0..l) |\n|---|---|---|---|---|\n");
     for (uint32_t l = 0; l <= en.level_count; ++l) {
@@ -490,6 +510,11 @@ int run_mesh(const std::string& path, Args args, uint32_t holes = 0) {
   chain += input_lod;
   std::printf("\ntotal: .dbss %zu bytes, LOD chain %zu bytes (the input counted once): %.2f x%s\n", en.bytes.size(), chain,
               double(en.bytes.size()) / chain, all_matched ? "" : " (some LODs cannot reach dbss's error at qp 16)");
+  if (args.max_chain_ratio > 0 && double(en.bytes.size()) > args.max_chain_ratio * chain) {
+    std::fprintf(stderr, "lod_bench: %s: the .dbss is %.2f x the LOD chain, over --max-chain-ratio %g\n", name.c_str(),
+                 double(en.bytes.size()) / chain, args.max_chain_ratio);
+    return 1;
+  }
   return 0;
 }
 
@@ -499,7 +524,10 @@ int main(int argc, char** argv) {
   Args args;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
-    if (a == "--levels" && i + 1 < argc) args.levels = static_cast<uint32_t>(std::atoi(argv[++i]));
+    if (a == "--levels" && i + 1 < argc) {
+      const std::string v = argv[++i];
+      args.levels = v == "auto" ? kAutoLevels : static_cast<uint32_t>(std::atoi(v.c_str()));
+    }
     else if (a == "--cut-holes" && i + 1 < argc) args.cut_holes = static_cast<uint32_t>(std::atoi(argv[++i]));
     else if (a == "--hole-radius" && i + 1 < argc) args.hole_radius = std::atof(argv[++i]);
     else if (a == "--cut-only") args.cut_only = true;
@@ -531,8 +559,9 @@ int main(int argc, char** argv) {
         p = q + 1;
       }
     } else if (a == "--skip-absent") args.skip_absent = true;
+    else if (a == "--max-chain-ratio" && i + 1 < argc) args.max_chain_ratio = std::atof(argv[++i]);
     else if (!a.empty() && a[0] == '-') {
-      std::fprintf(stderr, "usage: lod_bench [--levels N] [--control-faces F] [--control-bits B] [--cut-holes H] [--hole-radius R] [--cut-only] [--loop-faces N] [--hole-tolerance T] [--hole-faces-per-vertex C] [--errors E1,E2] [--samples N] [--detail] [--quick] [--no-search] [--dense-step-ratio R] [--plain-rounding] [--control-grid S] [--no-boundary-values] [--fixed-control] [--floor-ratio R] [--bdry-levels MASK] [--bdry-always] [--rdo LAMBDA] [--rdo-from LEVEL] [--skip-absent] MESH...\n");
+      std::fprintf(stderr, "usage: lod_bench [--levels N|auto] [--control-faces F] [--control-bits B] [--cut-holes H] [--hole-radius R] [--cut-only] [--loop-faces N] [--hole-tolerance T] [--hole-faces-per-vertex C] [--errors E1,E2] [--samples N] [--detail] [--quick] [--no-search] [--dense-step-ratio R] [--plain-rounding] [--control-grid S] [--no-boundary-values] [--fixed-control] [--floor-ratio R] [--bdry-levels MASK] [--bdry-always] [--rdo LAMBDA] [--rdo-from LEVEL] [--max-chain-ratio R] [--skip-absent] MESH...\n");
       return 1;
     } else args.meshes.push_back(a);
   }
