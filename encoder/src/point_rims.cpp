@@ -8,6 +8,7 @@
 #include <tuple>
 
 #include "dbss/encoder/point_distances.h"
+#include "dbss/encoder/triangle_tree.h"
 #include "mesh_geometry.h"
 
 namespace dbss {
@@ -235,15 +236,32 @@ bool rims_face_as_one_tube(const PointRim& a, const PointRim& b) {
   return dot(u, a.axis) < -kMinFacing && dot(u, b.axis) > kMinFacing && small >= kSameTube * big;
 }
 
-bool surface_joins(const TriangleMesh& closed_surface, const PointRim& a, const PointRim& b) {
+namespace {
+
+// The two places a join of a and b passes through at its middle: the
+// chord's, and hole_bridge.cpp's Hermite curve's (it leaves a against a's
+// axis and enters b along b's, so a bent tube's middle lies off the chord).
+std::pair<V3, V3> gap_middles(const PointRim& a, const PointRim& b) {
   const V3 chord_mid{0.5 * (a.centre[0] + b.centre[0]), 0.5 * (a.centre[1] + b.centre[1]),
                      0.5 * (a.centre[2] + b.centre[2])};
-  // hole_bridge.cpp's Hermite curve at its middle: it leaves a against a's
-  // axis and enters b along b's, so a bent tube's middle lies off the chord.
   const double gap = len(sub(b.centre, a.centre));
   V3 curve_mid = chord_mid;
   for (int c = 0; c < 3; ++c) curve_mid[c] -= 0.125 * gap * (a.axis[c] + b.axis[c]);
+  return {chord_mid, curve_mid};
+}
+
+}  // namespace
+
+bool surface_joins(const TriangleMesh& closed_surface, const PointRim& a, const PointRim& b) {
+  const auto [chord_mid, curve_mid] = gap_middles(a, b);
   return inside_mesh(closed_surface, chord_mid) || inside_mesh(closed_surface, curve_mid);
+}
+
+double gap_clearance(const TriangleTree& surface, const PointRim& a, const PointRim& b) {
+  const double tube = std::max(a.tube_radius, b.tube_radius);
+  if (!(tube > 0)) return 0;
+  const auto [chord_mid, curve_mid] = gap_middles(a, b);
+  return std::min(surface.distance(chord_mid.data()), surface.distance(curve_mid.data())) / tube;
 }
 
 }  // namespace dbss

@@ -14,6 +14,7 @@
 
 #include "dbss/decoder/mesh.h"
 #include "dbss/encoder/point_index.h"
+#include "dbss/encoder/triangle_tree.h"
 
 namespace dbss {
 
@@ -75,5 +76,13 @@ bool rims_face_as_one_tube(const PointRim& a, const PointRim& b);
 // a bridge would follow) is inside the surface.  A capped pair leaves it
 // outside, in the gap.
 bool surface_joins(const TriangleMesh& closed_surface, const PointRim& a, const PointRim& b);
+
+// How far the middle of the gap between two rims lies from a surface, in
+// the larger of their tube radii: the lesser distance of the two places
+// surface_joins tests.  Where a scan missed a band round a tube and the
+// surface capped both ends, the gap is empty space a tube's radius or more
+// from any surface; where the two "rims" are arcs of one hole's edge and
+// the surface bridged it, the gap's middle lies on or near the bridge.
+double gap_clearance(const TriangleTree& surface, const PointRim& a, const PointRim& b);
 
 }  // namespace dbss
