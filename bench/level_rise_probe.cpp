@@ -7,6 +7,7 @@
 //
 //   level_rise_probe [--seeds 1-7] [--levels 5] [--points 3000] [--noise 0]
 //                    [--shapes torus,double torus] [--truth 20000] [--smoothing 0]
+//                    [--control-bits B] [--fixed-control]
 // With PROBE_VERTICES set, also the mean distance to the truth of the
 // vertices each level added (level 0: the control vertices), and in
 // brackets their mean signed distance (+: outside the shape).  With
@@ -50,6 +51,8 @@ int main(int argc, char** argv) {
   size_t points = 3000, truth_count = 20000;
   double noise = 0;
   bool smoothing = true;  // EncodeOptions::smooth_noise (0: off)
+  int control_bits = 0;   // EncodeOptions::control_bits (0: the encoder's rule)
+  bool fixed_control = false;  // EncodeOptions::choose_control off
   std::vector<std::string> names = {"torus", "double torus"};
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string a = argv[i], v = argv[i + 1];
@@ -61,6 +64,8 @@ int main(int argc, char** argv) {
     else if (a == "--points") points = std::strtoull(v.c_str(), nullptr, 10);
     else if (a == "--noise") noise = std::atof(v.c_str());
     else if (a == "--smoothing") smoothing = v == "1";
+    else if (a == "--control-bits") control_bits = std::atoi(v.c_str());
+    else if (a == "--fixed-control") fixed_control = v == "1";
     else if (a == "--truth") truth_count = std::strtoull(v.c_str(), nullptr, 10);
     else if (a == "--shapes") {
       names.clear();
@@ -88,6 +93,8 @@ int main(int argc, char** argv) {
       EncodeOptions o;
       o.levels = levels;
       o.smooth_noise = smoothing;
+      o.control_bits = control_bits;
+      o.choose_control = !fixed_control;
       auto e = encode_points(pc, o);
       if (!e.ok()) {
         std::printf("%s seed %u: %s\n", s.name, seed, e.status().message().c_str());

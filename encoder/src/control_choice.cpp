@@ -44,7 +44,7 @@ std::vector<RdPoint> encoder_rd_curve(const Encoding& e, const PointIndex& index
       if (e.levels.positions[l - 1].size() / 3 > points) break;
       bytes += static_cast<double>(e.levels.chunks[l - 1].size());
     }
-    curve.push_back({bytes, level_distance_to_points(e.levels.positions[l], e.levels.triangles[l], index)});
+    curve.push_back({bytes, level_distance_to_points(e.levels.positions[l], e.levels.triangles[l], index), e.levels.positions[l].size() / 3});
   }
   return curve;
 }
@@ -72,6 +72,16 @@ bool rd_curve_dominates(const std::vector<RdPoint>& coarse, const std::vector<Rd
     if (!(reached >= 0 && reached <= f.bytes)) return false;  // NaN fails too
   }
   return true;
+}
+
+bool keep_coarse_control(const std::vector<RdPoint>& coarse, const std::vector<RdPoint>& fine, bool noisy, size_t points) {
+  if (!noisy) return rd_curve_dominates(coarse, fine);
+  std::vector<RdPoint> targets;
+  for (const RdPoint& f : fine)
+    if (f.vertices <= points) targets.push_back(f);
+  // (Level 0 alone past the density: nothing before the noise to compare.)
+  if (targets.empty()) return rd_curve_dominates(coarse, fine);
+  return rd_curve_dominates(coarse, targets);
 }
 
 }  // namespace dbss

@@ -270,7 +270,7 @@ Status choose_control(Encoding& e, Encoding coarse, const PointIndex& index, con
     return {};
   }
   const std::vector<RdPoint> fine_curve = encoder_rd_curve(e, index), coarse_curve = encoder_rd_curve(coarse, index);
-  const bool keep_coarse = rd_curve_dominates(coarse_curve, fine_curve);
+  const bool keep_coarse = keep_coarse_control(coarse_curve, fine_curve, noise.noisy, index.points().size());
   const auto describe = [](const std::vector<RdPoint>& c) {
     std::string s;
     char buf[48];
