@@ -30,7 +30,9 @@
 // variant `af` is advancing front through the same points, unquantized.
 //
 // usage: floor_probe [--points N] [--noise F] [--levels L] [--samples S]
-//                    [--seed S] [--regions] [--variants a,b,...] MESH_FILE...
+//                    [--seed S] [--regions] [--variants a,b,...] [--control-faces F] MESH_FILE...
+//   --control-faces: the control mesh's face count (the control choice's
+//   quarter candidate, say); default: the encoder's default count
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -184,6 +186,7 @@ int main(int argc, char** argv) {
   size_t points = 30000, samples = 100000;
   double noise = 0;
   uint32_t levels = 5, seed = 1;
+  uint32_t control_faces = 0;  // --control-faces: the control mesh's face count (0: the default)
   bool show_regions = false;
   std::vector<std::string> variants = {"points", "no-dz", "fine", "oracle", "oracle-fine"};
   std::vector<std::string> meshes;
@@ -196,6 +199,7 @@ int main(int argc, char** argv) {
     else if (a == "--variants" && i + 1 < argc) variants = split(argv[++i]);
     else if (a == "--seed" && i + 1 < argc) seed = static_cast<uint32_t>(std::atoi(argv[++i]));
     else if (a == "--regions") show_regions = true;
+    else if (a == "--control-faces" && i + 1 < argc) control_faces = static_cast<uint32_t>(std::atoi(argv[++i]));
     else if (!a.empty() && a[0] == '-') return std::fprintf(stderr, "floor_probe: unknown option %s\n", a.c_str()), 1;
     else meshes.push_back(a);
   }
@@ -217,6 +221,7 @@ int main(int argc, char** argv) {
     const dbss::PointIndex index(pc);
     dbss::EncodeOptions eo;
     eo.levels = 0;
+    eo.control.control_faces = control_faces;
     auto e = dbss::encode_points(index, eo);
     if (!e.ok()) return std::fprintf(stderr, "floor_probe: %s\n", e.status().to_string().c_str()), 1;
     const dbss::Encoding& enc = e.value();
