@@ -57,6 +57,7 @@
 #include "crease_shapes.h"
 #include "shapes.h"
 #include "dbss/encoder/encode.h"
+#include "dbss/encoder/point_index.h"
 #include "dbss/encoder/point_input.h"
 #include "dbss/io/geometry_files.h"
 #include "dbss/encoder/triangle_tree.h"
@@ -168,6 +169,93 @@ TagCheck check_tags(const Segments& tags, const Segments& truth, double tol) {
     c.total += len;
   }
   return c;
+}
+
+
+// Where a level's two-sided error sits (CREASE_BENCH_REGIONS=1): each
+// sample of either surface is classed by its nearest point on the truth
+// (near a true corner, a band from the true feature lines, or a face;
+// a face is "curved" when the truth's nearest vertex has a bend under the
+// crease angle, as the cylinder's side) and its distance summed per side.
+// Prints each class's share of the truth's area and its part of the
+// two-sided mean, per side, over the diagonal.
+struct RegionTable {
+  static constexpr int kClasses = 6;
+  static const char* name(int c) {
+    static const char* names[kClasses] = {"corner<3%", "line<0.3%", "line<1.5%", "line<5%", "face flat", "face curved"};
+    return names[c];
+  }
+};
+void print_regions(const dbss::TriangleMesh& level, const dbss::TriangleMesh& truth, const Segments& features, size_t samples,
+                   double diag, double angle, uint32_t l) {
+  // True corners: feature-segment ends shared by three or more segments.
+  std::vector<std::array<double, 3>> ends;
+  for (const auto& g : features) ends.push_back({g[0], g[1], g[2]}), ends.push_back({g[3], g[4], g[5]});
+  std::vector<std::array<double, 3>> corners;
+  for (const auto& a : ends) {
+    int n = 0;
+    for (const auto& b : ends) n += a == b;
+    if (n >= 3 && std::find(corners.begin(), corners.end(), a) == corners.end()) corners.push_back(a);
+  }
+  // Curved vertices: two incident triangles bent by 1 degree up to the crease angle.
+  const size_t nv = truth.vertex_count();
+  std::vector<std::vector<std::array<double, 3>>> normals(nv);
+  for (size_t f = 0; f < truth.triangle_count(); ++f) {
+    const float* a = &truth.positions[3 * size_t{truth.triangles[3 * f]}];
+    const float* b = &truth.positions[3 * size_t{truth.triangles[3 * f + 1]}];
+    const float* c = &truth.positions[3 * size_t{truth.triangles[3 * f + 2]}];
+    const double e[3] = {double(b[0]) - a[0], double(b[1]) - a[1], double(b[2]) - a[2]};
+    const double g[3] = {double(c[0]) - a[0], double(c[1]) - a[1], double(c[2]) - a[2]};
+    std::array<double, 3> n = {e[1] * g[2] - e[2] * g[1], e[2] * g[0] - e[0] * g[2], e[0] * g[1] - e[1] * g[0]};
+    const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    if (!(len > 0)) continue;
+    for (double& x : n) x /= len;
+    for (int k = 0; k < 3; ++k) normals[truth.triangles[3 * f + k]].push_back(n);
+  }
+  dbss::PointCloud verts;
+  verts.xyz.assign(truth.positions.begin(), truth.positions.end());
+  std::vector<uint8_t> curved(nv, 0);
+  const double lo = std::cos(angle * 3.14159265358979323846 / 180), hi = std::cos(1.0 * 3.14159265358979323846 / 180);
+  for (size_t v = 0; v < nv; ++v)
+    for (const auto& a : normals[v])
+      for (const auto& b : normals[v]) {
+        const double c = a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+        if (c < hi && c >= lo) curved[v] = 1;
+      }
+  const dbss::PointIndex vindex(verts);
+  const dbss::TriangleTree to_truth(truth), to_level(level);
+  const auto classify = [&](const double q[3]) {
+    double c[3];
+    to_truth.closest_point(q, c);
+    for (const auto& k : corners)
+      if (std::sqrt(std::pow(c[0] - k[0], 2) + std::pow(c[1] - k[1], 2) + std::pow(c[2] - k[2], 2)) < 0.03 * diag) return 0;
+    const double d = to_segments(c, features) / diag;
+    if (d < 0.003) return 1;
+    if (d < 0.015) return 2;
+    if (d < 0.05) return 3;
+    const float cf[3] = {float(c[0]), float(c[1]), float(c[2])};
+    return curved[vindex.nearest(cf)] ? 5 : 4;
+  };
+  double sum[2][RegionTable::kClasses] = {}, count[2][RegionTable::kClasses] = {};
+  double total[2] = {0, 0};
+  for (int side = 0; side < 2; ++side) {
+    const dbss::TriangleMesh& from = side == 0 ? level : truth;
+    const dbss::TriangleTree& to = side == 0 ? to_truth : to_level;
+    const std::vector<double> p = dbss::sample_surface(from, samples / 2, side == 0 ? 1 : 2);
+    for (size_t i = 0; i + 2 < p.size(); i += 3) {
+      const int k = classify(&p[i]);
+      const double d = to.distance(&p[i]);
+      sum[side][k] += d, count[side][k] += 1, total[side] += 1;
+    }
+  }
+  std::printf("regions level %u (two-sided mean %.3e of the diagonal): class, share of the truth's area, part of the mean "
+              "level->truth + truth->level, mean distance per side\n",
+              l, 0.5 * ((sum[0][0] + sum[0][1] + sum[0][2] + sum[0][3] + sum[0][4] + sum[0][5]) / total[0] +
+                        (sum[1][0] + sum[1][1] + sum[1][2] + sum[1][3] + sum[1][4] + sum[1][5]) / total[1]) / diag);
+  for (int k = 0; k < RegionTable::kClasses; ++k)
+    std::printf("  %-12s area %.3f  part %.3e + %.3e  mean %.2e / %.2e\n", RegionTable::name(k), count[1][k] / total[1],
+                0.5 * sum[0][k] / total[0] / diag, 0.5 * sum[1][k] / total[1] / diag, count[0][k] > 0 ? sum[0][k] / count[0][k] / diag : 0.0,
+                count[1][k] > 0 ? sum[1][k] / count[1][k] / diag : 0.0);
 }
 
 struct Run {
@@ -290,6 +378,10 @@ int main(int argc, char** argv) {
       if (const char* r = std::getenv("CREASE_BENCH_MINSHARE")) eo.creases.min_share = std::atof(r);
       // CREASE_BENCH_DARTS=R: CreaseOptions::max_dart_share (0: tags in pieces kept, as before it).
       if (const char* r = std::getenv("CREASE_BENCH_DARTS")) eo.creases.max_dart_share = std::atof(r);
+      // CREASE_BENCH_BITS=B: the control mesh's Draco bits (EncodeOptions::control_bits; 0: the encoder's rule).
+      if (const char* r = std::getenv("CREASE_BENCH_BITS")) eo.control_bits = std::atoi(r);
+      // CREASE_BENCH_CLAMP=1: a tagged control mesh clamped onto the points' box faces (CreaseOptions::clamp_to_points).
+      if (const char* r = std::getenv("CREASE_BENCH_CLAMP")) eo.creases.clamp_to_points = std::atoi(r) != 0;
       eo.control.shape.enabled = shaping;
       eo.creases.split = split;
       eo.choose_control = !fixed_control;
@@ -304,6 +396,27 @@ int main(int argc, char** argv) {
       runs[on].tags = check_tags(tagged_segments(enc.control, enc.contents.creases), true_features, 0.005 * diag);
       runs[on].levels = enc.levels.stats;
       runs[on].choice = enc.control_choice;
+      if (std::getenv("CREASE_BENCH_REGIONS")) {
+        // The scales the error is read against: Draco's control grid, the
+        // displacement step and the points' spacing, over the diagonal.
+        float lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+        for (size_t i = 0; i < enc.control.positions.size(); ++i)
+          lo[i % 3] = std::min(lo[i % 3], enc.control.positions[i]), hi[i % 3] = std::max(hi[i % 3], enc.control.positions[i]);
+        const double range = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
+        double area = 0;
+        for (size_t f = 0; f < truth.triangle_count(); ++f) {
+          const float* a = &truth.positions[3 * size_t{truth.triangles[3 * f]}];
+          const float* b = &truth.positions[3 * size_t{truth.triangles[3 * f + 1]}];
+          const float* c = &truth.positions[3 * size_t{truth.triangles[3 * f + 2]}];
+          const double u[3] = {double(b[0]) - a[0], double(b[1]) - a[1], double(b[2]) - a[2]};
+          const double v[3] = {double(c[0]) - a[0], double(c[1]) - a[1], double(c[2]) - a[2]};
+          area += 0.5 * std::sqrt(std::pow(u[1] * v[2] - u[2] * v[1], 2) + std::pow(u[2] * v[0] - u[0] * v[2], 2) + std::pow(u[0] * v[1] - u[1] * v[0], 2));
+        }
+        std::printf("scales (of the diagonal): control bits %d, Draco grid %.3e, step %.3e, points' spacing %.3e; %zu control vertices\n",
+                    enc.control_bits, range / ((1u << enc.control_bits) - 1) / diag, enc.step / diag,
+                    std::sqrt(area / static_cast<double>(points)) / diag, enc.control.vertex_count());
+        std::printf("control vertices clamped onto the points' box faces: %zu\n", enc.creases.clamped_to_points);
+      }
       for (const auto& t : enc.toc)
         if (t.type == dbss::format::kCrea) runs[on].tag_bytes = t.length + 12 + 16;  // data, frame, INDX entry
       // The same file as off: the same levels, so the same figures (and
@@ -357,6 +470,7 @@ int main(int argc, char** argv) {
                       100 * worst[4] / diag, worst[0], worst[1], worst[2],
                       worst[3] == 0 ? "on the level" : "on the truth");
         runs[on].p99.push_back(pct[0] / diag), runs[on].p999.push_back(pct[1] / diag);
+        if (std::getenv("CREASE_BENCH_REGIONS")) print_regions(m, truth, true_features, samples, diag, angle, l);
       }
     }
     const Run& r = runs[1];

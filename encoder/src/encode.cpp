@@ -128,6 +128,50 @@ int control_bits(const Encoding& e, const PointIndex& index, const EncodeOptions
   return control_bits_for_error(control, level_distance_to_points(control.positions, control.triangles, index), e.step);
 }
 
+namespace {
+// Clamps the vertices of `mesh` onto the points' faces that are axis
+// planes at their bounding box's sides; returns how many vertices moved.
+// Why (tagged files only): Draco's grid starts at the control vertices'
+// minimum and spans their largest extent, so on a machined part whose
+// faces are axis planes the grid lines fall on those faces only when the
+// extreme vertices lie on them.  A crease vertex snapped a little past
+// such a face (the cube: 1e-5-2e-5, from the sides' fitted planes) shifts
+// the whole grid, and every vertex of the faces rounds onto a line that
+// far off: 0.02 of the displacement step, which every level stores as 0,
+// so the offset stays in every level (bench/crease_bench.md, thirteenth
+// and fifteenth sessions).  A side of the box is a face when at least
+// kBoxFaceShare of the points lie on it (within kBoxFaceTolerance of the
+// box's extent: a clean sample of a plane has its coordinate exactly);
+// a side the points only touch along a line or a point (a cylinder's
+// side, a ridge) is left alone, as is a noisy cloud's.
+constexpr double kBoxFaceShare = 0.01, kBoxFaceTolerance = 1e-6;
+size_t clamp_to_box_faces(TriangleMesh& mesh, const PointCloud& pc) {
+  if (pc.size() == 0) return 0;
+  float lo[3], hi[3];
+  for (int a = 0; a < 3; ++a) lo[a] = hi[a] = pc.xyz[a];
+  for (size_t i = 0; i < pc.xyz.size(); ++i) lo[i % 3] = std::min(lo[i % 3], pc.xyz[i]), hi[i % 3] = std::max(hi[i % 3], pc.xyz[i]);
+  const double extent = std::max({double{hi[0]} - lo[0], double{hi[1]} - lo[1], double{hi[2]} - lo[2]});
+  size_t at_lo[3] = {0, 0, 0}, at_hi[3] = {0, 0, 0};
+  for (size_t i = 0; i < pc.xyz.size(); ++i) {
+    at_lo[i % 3] += pc.xyz[i] - lo[i % 3] <= kBoxFaceTolerance * extent;
+    at_hi[i % 3] += hi[i % 3] - pc.xyz[i] <= kBoxFaceTolerance * extent;
+  }
+  const double face = kBoxFaceShare * static_cast<double>(pc.size());
+  size_t moved = 0;
+  for (size_t v = 0; v < mesh.vertex_count(); ++v) {
+    bool any = false;
+    for (int a = 0; a < 3; ++a) {
+      float& x = mesh.positions[3 * v + a];
+      const float c = (x < lo[a] && at_lo[a] >= face) ? lo[a] : (x > hi[a] && at_hi[a] >= face) ? hi[a] : x;
+      any |= c != x;
+      x = c;
+    }
+    moved += any;
+  }
+  return moved;
+}
+}  // namespace
+
 // Everything after the control mesh, up to the levels: Draco's position
 // bits, creases, the control mesh through Draco, the levels.  `noise`:
 // point_noise(index), measured once per encoding.
@@ -153,6 +197,9 @@ Status encode_over_control(Encoding& e, const PointIndex& index, const PointNois
   if (o.round_along_surface && creases.empty() && e.creases.snapped == 0) {
     placed = std::make_unique<TriangleMesh>(e.stages.control);
     e.rounding = round_along_surface(*placed, e.control_bits);
+  } else if (!creases.empty() && o.creases.clamp_to_points) {
+    placed = std::make_unique<TriangleMesh>(e.stages.control);
+    e.creases.clamped_to_points = clamp_to_box_faces(*placed, pc);
   }
   if (Status st = control_mesh_through_draco(e, placed.get()); !st.ok()) return st;
   e.seconds.draco = since(t);
