@@ -58,6 +58,7 @@
 #include "shapes.h"
 #include "dbss/encoder/encode.h"
 #include "dbss/encoder/point_index.h"
+#include "dbss/encoder/mesh_shape.h"
 #include "dbss/encoder/point_input.h"
 #include "dbss/io/geometry_files.h"
 #include "dbss/encoder/triangle_tree.h"
@@ -269,6 +270,7 @@ struct Run {
   TagCheck tags;
   std::vector<uint8_t> file;  // the .dbss bytes, to say whether creases on wrote the same file as off
   double cpu = 0;             // encode_points' CPU seconds (all threads: std::clock)
+  dbss::MeshShape shape;      // the control mesh's shape figures (issue 16 item 0)
 };
 
 }  // namespace
@@ -368,6 +370,7 @@ int main(int argc, char** argv) {
         };
         flag("vflips", eo.creases.valence_flips), flag("beside", eo.creases.relax_beside_lines);
         flag("relax_after", eo.creases.relax_after_flips), flag("untag_flat", eo.creases.untag_flat);
+        flag("slivers", eo.creases.sliver_flips), flag("short", eo.creases.short_collapses);
         flag("gap", eo.creases.gap_snaps), flag("fanfit", eo.creases.flat_fan_fit), flag("fancheck", eo.creases.flat_fan_check);
       }
       // CREASE_BENCH_SMOOTH=R: CreaseOptions::smooth_ratio (0: without the smooth test, as before it).
@@ -417,6 +420,7 @@ int main(int argc, char** argv) {
                     std::sqrt(area / static_cast<double>(points)) / diag, enc.control.vertex_count());
         std::printf("control vertices clamped onto the points' box faces: %zu\n", enc.creases.clamped_to_points);
       }
+      runs[on].shape = dbss::mesh_shape(enc.control);
       for (const auto& t : enc.toc)
         if (t.type == dbss::format::kCrea) runs[on].tag_bytes = t.length + 12 + 16;  // data, frame, INDX entry
       // The same file as off: the same levels, so the same figures (and
@@ -479,11 +483,14 @@ int main(int argc, char** argv) {
       const dbss::CreaseStats& s = runs[on].stats;
       if (against_no_collapse || against_no_wedge || against_no_relax || against_beside || against_no_gate || against_no_vflips || against_no_flat_corners || against_sides_everywhere) std::printf("%s: ", on ? "after" : "before");
       std::printf("aligned: %zu vertices moved onto feature lines, %zu merged into a neighbour on one, %zu flat-face moves, %zu flat edges flipped toward valence 6, %zu edges flipped and %zu split along "
-                  "them, %zu chain edges; creases: %zu edges, %zu corners (%zu on flat fans, %zu dropped by the check), %zu darts, feature length %.3f; tags %zu bytes\n",
-                  s.aligned, s.align_collapses, s.align_relaxed, s.align_valence_flips, s.align_flips, s.align_splits, s.chain_edges, s.creases, s.corners + s.flat_corners, s.flat_corners, s.flat_corners_dropped, s.darts,
+                  "them, %zu chain edges, %zu slivers flipped, %zu short edges collapsed; creases: %zu edges, %zu corners (%zu on flat fans, %zu dropped by the check), %zu darts, feature length %.3f; tags %zu bytes\n",
+                  s.aligned, s.align_collapses, s.align_relaxed, s.align_valence_flips, s.align_flips, s.align_splits, s.chain_edges, s.sliver_flips, s.short_collapses, s.creases, s.corners + s.flat_corners, s.flat_corners, s.flat_corners_dropped, s.darts,
                   runs[on].length / diag, runs[on].tag_bytes);
     }
     std::printf("control mesh: off: %s; on: %s\n", runs[0].choice.c_str(), runs[1].choice.c_str());
+    // Issue 16 item 0: the share of control triangles under quality 0.2 and the highest valence.
+    std::printf("control shape (on): %.2f%% of triangles under quality %.1f, worst %.3f, max valence %u\n", 100 * r.shape.poor_share,
+                dbss::kPoorQuality, r.shape.min_quality, r.shape.max_valence);
     std::printf("creases: %zu edges of %zu tested (%zu gaps closed), %zu corners, %zu darts, %zu vertices snapped (largest move %.2e of the "
                 "diagonal); feature length found %.3f, true %.3f (diagonals); tags %zu bytes\n\n",
                 r.stats.creases, r.stats.edges_tested, r.stats.gaps_closed, r.stats.corners, r.stats.darts, r.stats.snapped, r.stats.max_snap / diag,

@@ -13,6 +13,8 @@
 #include "dbss/decoder/topology.h"
 #include "dbss/encoder/crease_align.h"
 #include "dbss/encoder/point_distances.h"
+#include "crease_short_edges.h"
+#include "crease_slivers.h"
 
 namespace dbss {
 
@@ -259,6 +261,9 @@ std::vector<double> stencil_offsets(const TriangleMesh& mesh, const format::Crea
 // raised the fandisk's level 3 by 9% at seed 1: the tag stays at every
 // level, where the extraordinary rule's ring is regular again).
 constexpr double kOvershoot = 0.25;
+
+// Rounds of collapse_short_edges (CreaseOptions::short_collapses).
+constexpr int kCollapseRounds = 4;
 
 void tag_flat_fans(const TriangleMesh& mesh, const LevelTopology& t, const std::vector<uint32_t>& count, double degrees,
                    bool fit_plane, bool check, format::Creases& out, CreaseStats& st) {
@@ -703,7 +708,20 @@ format::Creases find_creases(TriangleMesh& mesh, const PointIndex& points, const
     st.max_snap = std::max(st.max_snap, move);
   }
   mesh.positions = std::move(moved);
-  if (o.flat_corners) tag_flat_fans(mesh, t, count, o.flat_fan_degrees, o.flat_fan_fit, o.flat_fan_check, out, st);
+  // Slivers along the lines, after the snap has put their apex on it
+  // (crease_slivers.h); the flat fans are judged on the mesh as it ends up.
+  LevelTopology flipped, collapsed;
+  if (o.sliver_flips) st.sliver_flips = flip_slivers(mesh, t, out, count, flipped);
+  const LevelTopology& flipped_t = st.sliver_flips > 0 ? flipped : t;
+  // A few rounds: each round collapses at most one edge per neighbourhood.
+  for (int round = 0; round < kCollapseRounds && o.short_collapses; ++round) {
+    LevelTopology next;
+    const size_t made = collapse_short_edges(mesh, st.short_collapses > 0 ? collapsed : flipped_t, out, count, next);
+    if (made == 0) break;
+    st.short_collapses += made, collapsed = std::move(next);
+  }
+  const LevelTopology& final_t = st.short_collapses > 0 ? collapsed : flipped_t;
+  if (o.flat_corners) tag_flat_fans(mesh, final_t, count, o.flat_fan_degrees, o.flat_fan_fit, o.flat_fan_check, out, st);
   if (stats) *stats = st;
   return out;
 }

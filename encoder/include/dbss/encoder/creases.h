@@ -191,6 +191,15 @@ struct CreaseOptions {
   // +12% error creases on), the rotor 0.77 and 0.47 (at 0.47 level 3 +1.4%
   // error, +4.6% bytes, Hausdorff 1.50 -> 2.56% creases on).  <= 0: no test.
   double max_dart_share = 0.4;
+  // A tagged edge u-w whose triangle's third corner c (untagged) lies on
+  // the segment u-w is flipped to the other triangle's far corner, c moved
+  // onto the segment and the tag moved onto u-c and c-w (crease_slivers.h):
+  // the line then runs through c, and c's stencils see it.
+  bool sliver_flips = true;
+  // An untagged edge under an eighth of the longest edge at its ends is
+  // collapsed into one end (crease_short_edges.h): its level-1 stencil
+  // point lands edge lengths off it, past the line or off the face.
+  bool short_collapses = true;
 };
 
 struct CreaseStats {
@@ -212,6 +221,8 @@ struct CreaseStats {
   size_t flat_corners_dropped = 0;  // of those chosen, untagged by the check (CreaseOptions::flat_fan_check)
   size_t too_few_dropped = 0;  // crease edges found but untagged, too few to pay for a tagged file (CreaseOptions::min_share)
   size_t in_pieces_dropped = 0;  // crease edges found but untagged, too many darts among them (CreaseOptions::max_dart_share)
+  size_t short_collapses = 0;  // short untagged edges collapsed (CreaseOptions::short_collapses)
+  size_t sliver_flips = 0;  // slivers along a tagged line flipped away (CreaseOptions::sliver_flips)
 };
 
 // First aligns `mesh` to the feature lines (align_to_features: vertices
