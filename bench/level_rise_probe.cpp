@@ -7,7 +7,7 @@
 //
 //   level_rise_probe [--seeds 1-7] [--levels 5] [--points 3000] [--noise 0]
 //                    [--shapes torus,double torus] [--truth 20000] [--smoothing 0]
-//                    [--control-bits B] [--fixed-control]
+//                    [--control-bits B] [--fixed-control 0|1]
 // With PROBE_VERTICES set, also the mean distance to the truth of the
 // vertices each level added (level 0: the control vertices), and in
 // brackets their mean signed distance (+: outside the shape).  With

@@ -80,6 +80,9 @@ bool keep_coarse_control(const std::vector<RdPoint>& coarse, const std::vector<R
   for (const RdPoint& f : fine)
     if (f.vertices <= points) targets.push_back(f);
   // (Level 0 alone past the density: nothing before the noise to compare.)
+  // The coarse curve keeps all its levels on purpose: its own crossing level
+  // may still reach a target of the fine curve's earlier levels, and if it
+  // does, that is bytes the user would spend anyway at that error.
   if (targets.empty()) return rd_curve_dominates(coarse, fine);
   return rd_curve_dominates(coarse, targets);
 }

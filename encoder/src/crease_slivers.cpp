@@ -43,6 +43,7 @@ size_t flip_slivers(TriangleMesh& mesh, const LevelTopology& t, format::Creases&
   }
   const std::vector<uint32_t> triangles = mesh.triangles;
   const std::vector<float> positions = mesh.positions;
+  const std::vector<uint32_t> counts = count;
   std::vector<uint8_t> touched(t.triangle_count(), 0);
   size_t flips = 0;
   for (uint32_t e = 0; e < t.edge_count(); ++e) {
@@ -52,6 +53,10 @@ size_t flip_slivers(TriangleMesh& mesh, const LevelTopology& t, format::Creases&
       const uint32_t tw = t.twin[h], f = h / 3, g = tw / 3;
       const uint32_t u = t.triangles[h], w = t.triangles[next_half(h)], c = t.triangles[prev_half(h)], d = t.triangles[prev_half(tw)];
       if (touched[f] || touched[g] || c == d || count[c] != 0 || tags.corner[c] || boundary[c] || edges.count(key(c, d))) continue;
+      // fan[] holds the triangles as they were before this pass: once an
+      // earlier flip has rebuilt one of c's triangles (c was its far corner
+      // d), the fold check below would read stale corners, so c waits.
+      if (std::any_of(fan[c].begin(), fan[c].end(), [&](uint32_t x) { return touched[x] != 0; })) continue;
       const V3 pu = pos(mesh, u), pw = pos(mesh, w), pc = pos(mesh, c), pd = pos(mesh, d);
       const V3 uw = sub(pw, pu);
       const double l2 = dot(uw, uw);
@@ -91,7 +96,7 @@ size_t flip_slivers(TriangleMesh& mesh, const LevelTopology& t, format::Creases&
   if (flips == 0) return 0;
   auto built = build_topology(n, mesh.triangles);
   if (!built.ok()) {  // not expected (c-d was no edge, so the mesh stays manifold): nothing flipped
-    mesh.triangles = triangles, mesh.positions = positions;
+    mesh.triangles = triangles, mesh.positions = positions, count = counts;
     return 0;
   }
   flipped = std::move(built).value();

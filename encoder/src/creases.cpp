@@ -721,6 +721,8 @@ format::Creases find_creases(TriangleMesh& mesh, const PointIndex& points, const
     st.short_collapses += made, collapsed = std::move(next);
   }
   const LevelTopology& final_t = st.short_collapses > 0 ? collapsed : flipped_t;
+  // A flip splits one tagged edge into two: count the tags the file holds.
+  if (st.sliver_flips > 0 || st.short_collapses > 0) st.creases = static_cast<size_t>(std::count_if(out.edge.begin(), out.edge.end(), [](uint8_t b) { return b != 0; }));
   if (o.flat_corners) tag_flat_fans(mesh, final_t, count, o.flat_fan_degrees, o.flat_fan_fit, o.flat_fan_check, out, st);
   if (stats) *stats = st;
   return out;

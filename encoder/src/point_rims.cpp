@@ -67,10 +67,14 @@ std::pair<V3, V3> tangents(V3 n) {
 }  // namespace
 
 std::vector<PointRim> find_point_rims(const PointIndex& index, size_t max_points, const RimOptions& options) {
+  return link_rims(find_rim_points(index, max_points), options);
+}
+
+RimPoints find_rim_points(const PointIndex& index, size_t max_points) {
   const PointCloud& pc = index.points();
   const size_t n = pc.size();
-  std::vector<PointRim> rims;
-  if (n < kNeighbours || max_points < kNeighbours) return rims;
+  RimPoints out;
+  if (n < kNeighbours || max_points < kNeighbours) return out;
   if (n > max_points) {
     // A larger cloud is judged by every stride-th point with its own index,
     // as a sparser scan of the same surface: the neighbourhoods and the
@@ -82,15 +86,16 @@ std::vector<PointRim> find_point_rims(const PointIndex& index, size_t max_points
     share.xyz.reserve(3 * (n / stride + 1));
     for (size_t i = 0; i < n; i += stride) share.xyz.insert(share.xyz.end(), &pc.xyz[3 * i], &pc.xyz[3 * i] + 3);
     const PointIndex share_index(share);
-    return find_point_rims(share_index, max_points, options);
+    return find_rim_points(share_index, max_points);
   }
   // The boundary points: where each is, its surface normal, and the
   // direction (in its tangent plane) of the empty sector, into the opening.
-  PointCloud edge;
-  std::vector<V3> normal, into;
+  PointCloud& edge = out.edge;
+  std::vector<V3>&normal = out.normal, &into = out.into;
+  std::vector<double>& reach_of = out.reach;  // each boundary point's distance to its farthest neighbour
   uint32_t nb[kNeighbours];
   float d2[kNeighbours];
-  std::vector<double> angle, reach_of;  // reach_of: each boundary point's distance to its farthest neighbour
+  std::vector<double> angle;
   std::vector<uint32_t> near;
   for (size_t i = 0; i < n; ++i) {
     const float* q = &pc.xyz[3 * i];
@@ -136,6 +141,15 @@ std::vector<PointRim> find_point_rims(const PointIndex& index, size_t max_points
     const double c = std::cos(middle), s = std::sin(middle);
     into.push_back({c * e1[0] + s * e2[0], c * e1[1] + s * e2[1], c * e1[2] + s * e2[2]});
   }
+  return out;
+}
+
+std::vector<PointRim> link_rims(const RimPoints& points, const RimOptions& options) {
+  const PointCloud& edge = points.edge;
+  const std::vector<V3>&normal = points.normal, &into = points.into;
+  const std::vector<double>& reach_of = points.reach;
+  std::vector<PointRim> rims;
+  std::vector<uint32_t> near;
   const size_t m = edge.size();
   if (m < options.min_points) return rims;
   // Link boundary points closer than twice their neighbourhoods' radius

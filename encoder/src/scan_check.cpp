@@ -310,12 +310,14 @@ ScanCheck check_scan(const Encoding& e, const PointIndex& index, unsigned thread
   if (!c.open && info.components > 0) {
     RimOptions loose;
     loose.min_sectors = 7;
-    const std::vector<PointRim> loose_rims = find_point_rims(index, size_t{1} << 16, loose);
+    // The boundary points once; each option set only links them.
+    const RimPoints rim_points = find_rim_points(index, size_t{1} << 16);
+    const std::vector<PointRim> loose_rims = link_rims(rim_points, loose);
     std::vector<PointRim> rims;
     for (const PointRim& r : loose_rims)
       if (r.sectors >= RimOptions{}.min_sectors) rims.push_back(r);
     const std::vector<std::pair<size_t, size_t>> pairs = tube_end_pairs(rims), loose_pairs = tube_end_pairs(loose_rims);
-    const std::vector<PointRim> split_rims = find_point_rims(index, size_t{1} << 16, split_rim_options());
+    const std::vector<PointRim> split_rims = link_rims(rim_points, split_rim_options());
     const std::vector<std::pair<size_t, size_t>> split_pairs = tube_end_pairs(split_rims);
     if (!pairs.empty() || !loose_pairs.empty() || !split_pairs.empty()) {
       TriangleMesh test = e.control;

@@ -48,6 +48,19 @@ struct RimOptions {
   double link = 2;        // boundary points closer than this many neighbourhood radii are one rim
 };
 
+// A cloud's boundary points (see find_point_rims), kept so that several
+// RimOptions can link the same points without finding them again: finding
+// them (a neighbour search and a plane fit per point) is the costly part,
+// and it does not depend on the options.
+struct RimPoints {
+  PointCloud edge;                          // the boundary points
+  std::vector<std::array<double, 3>> normal;  // each one's surface normal
+  std::vector<std::array<double, 3>> into;    // the empty sector's direction, in the tangent plane
+  std::vector<double> reach;                  // the radius of each one's neighbourhood
+};
+RimPoints find_rim_points(const PointIndex& index, size_t max_points = size_t{1} << 16);
+std::vector<PointRim> link_rims(const RimPoints& points, const RimOptions& options = {});
+
 // The closed rims of openings in the points: boundary points (a point whose
 // nearest neighbours, seen in its tangent plane, leave a wide empty sector)
 // linked into groups that run most of the way round their centre.  A cloud
