@@ -92,7 +92,7 @@ std::string quantization_note(const Encoding& e) {
 }  // namespace
 
 Status control_mesh_through_draco(Encoding& e, const TriangleMesh* placed) {
-  auto draco = encode_control_mesh(placed ? *placed : e.stages.control, {e.control_bits, 0});
+  auto draco = encode_control_mesh(placed ? *placed : e.stages.control, {e.control_bits, kControlDracoSpeed});
   if (!draco.ok()) return draco.status();
   auto decoded = decode_control_mesh(draco.value(), 1u << 30, 1u << 30);
   if (!decoded.ok()) return Status(ErrorCode::internal, "control mesh after Draco: " + decoded.status().to_string());
