@@ -631,9 +631,10 @@ TEST_CASE("mesh input: control vertices rounded along the surface: every level n
   CHECK(level_error(a, input, o.levels) < 0.99 * level_error(b, input, o.levels));
 }
 
-// The CTRL chunk is Draco at kControlDracoSpeed (2): the plain parallelogram
-// prediction, which on a control mesh this coarse beats speed 0's
-// constrained multi-parallelogram (the default before: cow's control mesh
+// The CTRL chunk is the smaller of Draco speeds 2 and 0 (kControlDracoSpeeds):
+// the plain parallelogram prediction, which on a control mesh this coarse
+// mostly beats speed 0's constrained multi-parallelogram (speed 0 alone was
+// the default before: cow's control mesh
 // 820 -> 776 bytes, camel's 1,614 -> 1,572, bench/lod_bench.md fifteenth
 // session).  The file's chunk is within 2% of the smallest any Draco speed
 // 0..9 gives for the same control mesh (speed 10 stores floats); Draco's
