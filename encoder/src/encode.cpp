@@ -92,8 +92,15 @@ std::string quantization_note(const Encoding& e) {
 }  // namespace
 
 Status control_mesh_through_draco(Encoding& e, const TriangleMesh* placed) {
-  auto draco = encode_control_mesh(placed ? *placed : e.stages.control, {e.control_bits, 0});
-  if (!draco.ok()) return draco.status();
+  // The smaller of Draco's two position predictors (control_mesh_codec.h,
+  // kControlDracoSpeeds): which one wins depends on the mesh and the bits.
+  const TriangleMesh& mesh = placed ? *placed : e.stages.control;
+  Result<std::vector<uint8_t>> draco = Status(ErrorCode::internal, "control mesh: no Draco speed");
+  for (const int speed : kControlDracoSpeeds) {
+    auto bytes = encode_control_mesh(mesh, {e.control_bits, speed});
+    if (!bytes.ok()) return bytes.status();
+    if (!draco.ok() || bytes.value().size() < draco.value().size()) draco = std::move(bytes);
+  }
   auto decoded = decode_control_mesh(draco.value(), 1u << 30, 1u << 30);
   if (!decoded.ok()) return Status(ErrorCode::internal, "control mesh after Draco: " + decoded.status().to_string());
   e.control = std::move(decoded).value();

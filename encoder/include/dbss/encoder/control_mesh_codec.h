@@ -9,9 +9,23 @@
 
 namespace dbss {
 
+// Draco's encoder speeds the encoder tries for the CTRL chunk, keeping the
+// smaller: 0 predicts positions with the constrained multi-parallelogram,
+// 2 with the plain parallelogram (both keep Draco's own choice of
+// edgebreaker method, valence on the larger meshes).  On control meshes
+// this coarse (140-1,600 vertices, 11 bits) the plain parallelogram is
+// smaller: 0.6-5.4% fewer CTRL bytes on six libcgal-demo meshes' control
+// meshes (bunny00 -0.6%, armadillo -1.7%, shark -1.6%, camel -2.6%,
+// elephant -4.8%, cow -5.4%), 2-8% on three point clouds'; but on
+// armadillo's at 9-10 bits speed 0 was ~50 bytes smaller (bench/lod_bench.md,
+// fifteenth session, bench/ctrl_codec_probe).  Any speed writes a Draco 1.5
+// bitstream the decoder reads unchanged (format section 8); speed 10 would
+// store floats.  Encoding the control mesh twice costs milliseconds.
+inline constexpr int kControlDracoSpeeds[] = {2, 0};
+
 struct ControlCodecOptions {
   int position_bits = 16;  // Draco position quantization, 1..30; 0 = lossless float
-  int speed = 0;           // Draco encoder speed 0 (smallest) .. 10 (fastest)
+  int speed = 2;           // Draco encoder speed 0 .. 10 (fastest); 0 and 2 are the smallest (see above)
 };
 
 // Draco position bits that round the control vertices to about half the
