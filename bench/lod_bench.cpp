@@ -5,7 +5,7 @@
 // bounding-box diagonal (measure/mesh_distance).  Also: dbss's QEM against
 // meshoptimizer's simplifier for the control mesh.
 //
-//   lod_bench [--levels N|auto] [--control-faces F] [--control-bits B] [--cut-holes H] [--hole-radius R] [--cut-only] [--loop-faces N] [--hole-tolerance T] [--hole-faces-per-vertex C] [--errors E1,E2,..] [--samples N] [--detail] [--quick] [--no-search] [--dense-step-ratio R] [--plain-rounding] [--control-grid S] [--no-boundary-values] [--fixed-control] [--floor-ratio R] [--bdry-levels MASK] [--bdry-always] [--rdo LAMBDA] [--rdo-from LEVEL] [--max-chain-ratio R] [--skip-absent] MESH...
+//   lod_bench [--levels N|auto] [--control-faces F] [--control-bits B] [--cut-holes H] [--hole-radius R] [--cut-only] [--loop-faces N] [--hole-tolerance T] [--hole-faces-per-vertex C] [--errors E1,E2,..] [--samples N] [--detail] [--quick] [--no-search] [--dense-step-ratio R] [--plain-rounding] [--control-grid S] [--no-boundary-values] [--fixed-control] [--floor-ratio R] [--bdry-levels MASK] [--bdry-always] [--rdo LAMBDA] [--rdo-from LEVEL] [--max-chain-ratio R] [--input-lod-share S] [--skip-absent] MESH...
 //
 // With no MESH: the libcgal-demo meshes under test-data/ (closed, with
 // holes, several components); --cut-holes H adds each mesh again with H
@@ -54,6 +54,11 @@ struct Args {
   size_t samples = 100000;
   bool skip_absent = false;
   double max_chain_ratio = 0;  // --max-chain-ratio R: exit 1 when the .dbss is over R x the LOD chain (ctest)
+  // --input-lod-share S: a level with at least S x the input's triangles
+  // gets the input itself as its LOD (a user's chain keeps the input as its
+  // finest LOD rather than a simplification of nearly its size).  1: only
+  // levels with at least the input's triangles, as before.
+  double input_lod_share = 1;
   bool detail = false;  // --detail: where each level's bytes and error go
   bool quick = false;   // --quick: no simplifier comparison, no decode timing (for sweeps)
   bool no_search = false;  // --no-search: the equal-error table on the targets' grid only
@@ -492,7 +497,7 @@ int run_mesh(const std::string& path, Args args, uint32_t holes = 0) {
   bool all_matched = true;
   for (uint32_t l = 0; l <= en.level_count; ++l) {
     const Row& r = rows[l];
-    const bool is_input = r.triangles >= input.triangle_count();
+    const bool is_input = double(r.triangles) >= args.input_lod_share * double(input.triangle_count());
     const TriangleMesh lod = is_input ? input : meshopt(input, r.triangles, 0);
     DracoResult pick;
     bool matched = false;
@@ -560,10 +565,15 @@ int main(int argc, char** argv) {
       }
     } else if (a == "--skip-absent") args.skip_absent = true;
     else if (a == "--max-chain-ratio" && i + 1 < argc) args.max_chain_ratio = std::atof(argv[++i]);
+    else if (a == "--input-lod-share" && i + 1 < argc) args.input_lod_share = std::atof(argv[++i]);
     else if (!a.empty() && a[0] == '-') {
-      std::fprintf(stderr, "usage: lod_bench [--levels N|auto] [--control-faces F] [--control-bits B] [--cut-holes H] [--hole-radius R] [--cut-only] [--loop-faces N] [--hole-tolerance T] [--hole-faces-per-vertex C] [--errors E1,E2] [--samples N] [--detail] [--quick] [--no-search] [--dense-step-ratio R] [--plain-rounding] [--control-grid S] [--no-boundary-values] [--fixed-control] [--floor-ratio R] [--bdry-levels MASK] [--bdry-always] [--rdo LAMBDA] [--rdo-from LEVEL] [--max-chain-ratio R] [--skip-absent] MESH...\n");
+      std::fprintf(stderr, "usage: lod_bench [--levels N|auto] [--control-faces F] [--control-bits B] [--cut-holes H] [--hole-radius R] [--cut-only] [--loop-faces N] [--hole-tolerance T] [--hole-faces-per-vertex C] [--errors E1,E2] [--samples N] [--detail] [--quick] [--no-search] [--dense-step-ratio R] [--plain-rounding] [--control-grid S] [--no-boundary-values] [--fixed-control] [--floor-ratio R] [--bdry-levels MASK] [--bdry-always] [--rdo LAMBDA] [--rdo-from LEVEL] [--max-chain-ratio R] [--input-lod-share S] [--skip-absent] MESH...\n");
       return 1;
     } else args.meshes.push_back(a);
+  }
+  if (!(args.input_lod_share > 0 && args.input_lod_share <= 1)) {
+    std::fprintf(stderr, "lod_bench: --input-lod-share must be in (0, 1]\n");
+    return 1;
   }
   if (args.meshes.empty())
     for (const char* m : {"bunny00.off", "armadillo.off", "elephant-with-holes.off", "blobby_3cc.off"})
