@@ -59,6 +59,7 @@
 #include "dbss/encoder/encode.h"
 #include "dbss/encoder/point_index.h"
 #include "dbss/encoder/mesh_shape.h"
+#include "dbss/encoder/open_surface.h"
 #include "dbss/encoder/point_input.h"
 #include "dbss/io/geometry_files.h"
 #include "dbss/encoder/triangle_tree.h"
@@ -406,15 +407,7 @@ int main(int argc, char** argv) {
         for (size_t i = 0; i < enc.control.positions.size(); ++i)
           lo[i % 3] = std::min(lo[i % 3], enc.control.positions[i]), hi[i % 3] = std::max(hi[i % 3], enc.control.positions[i]);
         const double range = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
-        double area = 0;
-        for (size_t f = 0; f < truth.triangle_count(); ++f) {
-          const float* a = &truth.positions[3 * size_t{truth.triangles[3 * f]}];
-          const float* b = &truth.positions[3 * size_t{truth.triangles[3 * f + 1]}];
-          const float* c = &truth.positions[3 * size_t{truth.triangles[3 * f + 2]}];
-          const double u[3] = {double(b[0]) - a[0], double(b[1]) - a[1], double(b[2]) - a[2]};
-          const double v[3] = {double(c[0]) - a[0], double(c[1]) - a[1], double(c[2]) - a[2]};
-          area += 0.5 * std::sqrt(std::pow(u[1] * v[2] - u[2] * v[1], 2) + std::pow(u[2] * v[0] - u[0] * v[2], 2) + std::pow(u[0] * v[1] - u[1] * v[0], 2));
-        }
+        const double area = dbss::mesh_area(truth);
         std::printf("scales (of the diagonal): control bits %d, Draco grid %.3e, step %.3e, points' spacing %.3e; %zu control vertices\n",
                     enc.control_bits, range / ((1u << enc.control_bits) - 1) / diag, enc.step / diag,
                     std::sqrt(area / static_cast<double>(points)) / diag, enc.control.vertex_count());

@@ -19,8 +19,6 @@ constexpr double kTurn = 0.866;  // cos 30 degrees
 constexpr double kSliver = 0.05;
 constexpr uint32_t kValence = 10;
 
-uint64_t key(uint32_t a, uint32_t b) { return uint64_t{std::min(a, b)} << 32 | std::max(a, b); }
-
 double quality(const V3& a, const V3& b, const V3& c) {
   const double e = dot(sub(b, a), sub(b, a)) + dot(sub(c, b), sub(c, b)) + dot(sub(a, c), sub(a, c));
   if (!(e > 0)) return 0;
@@ -51,7 +49,7 @@ size_t collapse_short_edges(TriangleMesh& mesh, const LevelTopology& t, format::
   const auto sharp = [&](uint32_t v) { return count[v] > 0 || tags.corner[v] != 0; };
   std::unordered_set<uint64_t> tagged;
   for (uint32_t e = 0; e < t.edge_count(); ++e)
-    if (tags.edge[e]) tagged.insert(key(t.triangles[t.edge_half[e]], t.triangles[next_half(t.edge_half[e])]));
+    if (tags.edge[e]) tagged.insert(edge_key(t.triangles[t.edge_half[e]], t.triangles[next_half(t.edge_half[e])]));
   // into[v]: the vertex v merges into (v itself when kept).
   std::vector<uint32_t> into(n);
   for (uint32_t v = 0; v < n; ++v) into[v] = v;
@@ -127,10 +125,10 @@ size_t collapse_short_edges(TriangleMesh& mesh, const LevelTopology& t, format::
   tags.corner = std::move(corner), count = std::move(new_count);
   tags.edge.assign(collapsed.edge_count(), 0);
   std::unordered_set<uint64_t> renamed;
-  for (uint64_t k : tagged) renamed.insert(key(index[static_cast<uint32_t>(k >> 32)], index[static_cast<uint32_t>(k)]));
+  for (uint64_t k : tagged) renamed.insert(edge_key(index[static_cast<uint32_t>(k >> 32)], index[static_cast<uint32_t>(k)]));
   for (uint32_t e = 0; e < collapsed.edge_count(); ++e) {
     const uint32_t h = collapsed.edge_half[e];
-    tags.edge[e] = renamed.count(key(collapsed.triangles[h], collapsed.triangles[next_half(h)])) ? 1 : 0;
+    tags.edge[e] = renamed.count(edge_key(collapsed.triangles[h], collapsed.triangles[next_half(h)])) ? 1 : 0;
   }
   return collapses;
 }

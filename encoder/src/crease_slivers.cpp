@@ -19,8 +19,6 @@ namespace {
 // hundredths off (bench/crease_bench.md, fourteenth session).
 constexpr double kOnLine = 0.1, kFromEnd = 0.1;
 
-uint64_t key(uint32_t a, uint32_t b) { return uint64_t{std::min(a, b)} << 32 | std::max(a, b); }
-
 V3 normal_of(const V3& a, const V3& b, const V3& c) { return cross(sub(b, a), sub(c, a)); }
 
 }  // namespace
@@ -38,8 +36,8 @@ size_t flip_slivers(TriangleMesh& mesh, const LevelTopology& t, format::Creases&
   std::unordered_set<uint64_t> edges, tagged;
   for (uint32_t e = 0; e < t.edge_count(); ++e) {
     const uint32_t h = t.edge_half[e];
-    edges.insert(key(t.triangles[h], t.triangles[next_half(h)]));
-    if (tags.edge[e]) tagged.insert(key(t.triangles[h], t.triangles[next_half(h)]));
+    edges.insert(edge_key(t.triangles[h], t.triangles[next_half(h)]));
+    if (tags.edge[e]) tagged.insert(edge_key(t.triangles[h], t.triangles[next_half(h)]));
   }
   const std::vector<uint32_t> triangles = mesh.triangles;
   const std::vector<float> positions = mesh.positions;
@@ -52,7 +50,7 @@ size_t flip_slivers(TriangleMesh& mesh, const LevelTopology& t, format::Creases&
       if (h == kNoHalfEdge || t.twin[h] == kNoHalfEdge) continue;
       const uint32_t tw = t.twin[h], f = h / 3, g = tw / 3;
       const uint32_t u = t.triangles[h], w = t.triangles[next_half(h)], c = t.triangles[prev_half(h)], d = t.triangles[prev_half(tw)];
-      if (touched[f] || touched[g] || c == d || count[c] != 0 || tags.corner[c] || boundary[c] || edges.count(key(c, d))) continue;
+      if (touched[f] || touched[g] || c == d || count[c] != 0 || tags.corner[c] || boundary[c] || edges.count(edge_key(c, d))) continue;
       // fan[] holds the triangles as they were before this pass: once an
       // earlier flip has rebuilt one of c's triangles (c was its far corner
       // d), the fold check below would read stale corners, so c waits.
@@ -85,8 +83,8 @@ size_t flip_slivers(TriangleMesh& mesh, const LevelTopology& t, format::Creases&
       for (int k = 0; k < 3; ++k) mesh.positions[3 * size_t{c} + k] = static_cast<float>(on[k]);
       mesh.triangles[3 * f] = c, mesh.triangles[3 * f + 1] = u, mesh.triangles[3 * f + 2] = d;
       mesh.triangles[3 * g] = d, mesh.triangles[3 * g + 1] = w, mesh.triangles[3 * g + 2] = c;
-      edges.erase(key(u, w)), edges.insert(key(c, d));
-      tagged.erase(key(u, w)), tagged.insert(key(u, c)), tagged.insert(key(c, w));
+      edges.erase(edge_key(u, w)), edges.insert(edge_key(c, d));
+      tagged.erase(edge_key(u, w)), tagged.insert(edge_key(u, c)), tagged.insert(edge_key(c, w));
       count[c] += 2;
       touched[f] = touched[g] = 1;
       ++flips;
@@ -103,7 +101,7 @@ size_t flip_slivers(TriangleMesh& mesh, const LevelTopology& t, format::Creases&
   tags.edge.assign(flipped.edge_count(), 0);
   for (uint32_t e = 0; e < flipped.edge_count(); ++e) {
     const uint32_t h = flipped.edge_half[e];
-    tags.edge[e] = tagged.count(key(flipped.triangles[h], flipped.triangles[next_half(h)])) ? 1 : 0;
+    tags.edge[e] = tagged.count(edge_key(flipped.triangles[h], flipped.triangles[next_half(h)])) ? 1 : 0;
   }
   return flips;
 }

@@ -3,6 +3,7 @@
 // point_rims.cpp.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <vector>
@@ -17,6 +18,8 @@ inline V3 pos(const TriangleMesh& m, uint32_t v) { return {m.positions[3 * v], m
 inline V3 sub(V3 a, V3 b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
 inline V3 cross(V3 a, V3 b) { return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]}; }
 inline double dot(V3 a, V3 b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+// An undirected edge's key: the same for (a, b) and (b, a).
+inline uint64_t edge_key(uint32_t a, uint32_t b) { return uint64_t{std::min(a, b)} << 32 | std::max(a, b); }
 // The mean of v's neighbours' positions (false: v has none).
 inline bool neighbour_mean(const TriangleMesh& m, const Adjacency& adj, uint32_t v, float out[3]) {
   const uint32_t deg = adj.offset[v + 1] - adj.offset[v];
