@@ -1,7 +1,15 @@
 // rim_probe: the self-check's point rims and their candidate pairs on the
 // hole sweep's rows (scan_bench --hole-sweep --surface closed --levels 1)
 // and the clean tori, with the gap's clearance along the path a join would
-// follow.  A measurement probe for issue 13 (bench/scan_bench.md).
+// follow.  A measurement probe for issue 13 (bench/scan_bench.md,
+// sixteenth session).  Lines: ROW (the surface's genus and the self-check's
+// warnings), FULL (the pairs check_scan's fourth look weighs), RIM (rims
+// linked over 1.25 and 1.5 radii, down to 3 sectors and 5 points), OPEN
+// (the mean of each rim's points' empty-sector directions, toward the
+// other end) and PAIR (every pair under 6 radii apart: size, mean wall,
+// axes' facing, tube radii's ratio, sectors, joined, chord clearance, and
+// the Hermite path's largest clearance outside the surface, least over its
+// middle half, samples inside).
 // usage: rim_probe [--points N] [--clean] [NAME_PART...]
 #include <algorithm>
 #include <cmath>
@@ -56,6 +64,36 @@ Profile profile(const dbss::TriangleMesh& test, const dbss::TriangleTree& tree, 
     if (t >= 0.25 && t <= 0.75) p.mid_band = std::min(p.mid_band, in ? 0.0 : d);
   }
   return p;
+}
+
+// The mean of a rim's boundary points' empty-sector directions
+// (RimPoints::into): its points found again by linking as link_rims does
+// (boundary points within `link` times their reach) and picking the group
+// whose centroid is the rim's centre.
+V3 opening_of(const dbss::RimPoints& rp, double link, const dbss::PointRim& rim) {
+  const size_t m = rp.edge.size();
+  std::vector<uint32_t> parent(m);
+  for (uint32_t i = 0; i < m; ++i) parent[i] = i;
+  const auto find = [&](uint32_t x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  };
+  const dbss::PointIndex index(rp.edge);
+  std::vector<uint32_t> near;
+  for (size_t i = 0; i < m; ++i) {
+    index.within(&rp.edge.xyz[3 * i], static_cast<float>(link * rp.reach[i]), near);
+    for (uint32_t j : near) parent[find(static_cast<uint32_t>(i))] = find(j);
+  }
+  std::vector<std::vector<uint32_t>> groups(m);
+  for (uint32_t i = 0; i < m; ++i) groups[find(i)].push_back(i);
+  for (const auto& g : groups) {
+    if (g.empty()) continue;
+    V3 c{0, 0, 0}, o{0, 0, 0};
+    for (uint32_t i : g)
+      for (int k = 0; k < 3; ++k) c[k] += rp.edge.xyz[3 * i + k] / static_cast<double>(g.size()), o[k] += rp.into[i][k] / static_cast<double>(g.size());
+    if (len(sub(c, rim.centre)) < 1e-4) return o;
+  }
+  return {0, 0, 0};
 }
 
 }  // namespace
@@ -161,6 +199,9 @@ int main(int argc, char** argv) {
             const bool joins = dbss::surface_joins(test, a, b);
             const double clear = dbss::gap_clearance(tree, a, b);
             const Profile pax = profile(test, tree, a, b, a.axis, b.axis);
+            const V3 ao = opening_of(rp, ro.link, a), bo = opening_of(rp, ro.link, b);
+            const double oa = dot(u, ao), ob = -dot(u, bo);
+            std::printf("  OPEN link%.2f %zu-%zu |oa| %.2f |ob| %.2f oa %.2f ob %.2f\n", link, i, j, len(ao), len(bo), oa, ob);
             std::printf("  PAIR link%.2f %zu-%zu%s gap/big %.2f size %.2f wall %.2f fa %.2f fb %.2f trr %.2f sec %d/%d joins %d clear %.2f | ax max %.2f mid %.2f in %d\n",
                         link, i, j, paired ? " TEP" : "", gap / big, small / big, 0.5 * (a.wall + b.wall), dot(u, a.axis),
                         dot(u, b.axis), std::min(a.tube_radius, b.tube_radius) / std::max(a.tube_radius, b.tube_radius),
