@@ -98,6 +98,10 @@ TEST_CASE("oblique rims: full tube ends with tilted walls capped are warned") {
 // Right rows whose finer rims pair two arcs of one bridged hole's edge,
 // with the surface capping neither: their gaps' middles lie 0.26-0.76 tube
 // radii from the bridge.  Without the clearance gate all three warned.
+// The last one is also the one right row of the hole sweeps whose full
+// rims (the fourth look) make a facing pair the surface caps: tube radii
+// 0.73 (bound 0.9), clearance 0.62 (bound 1.0), each gate alone keeps it
+// silent.
 TEST_CASE("oblique rims: arcs of one bridged hole's edge are not warned") {
   struct Row {
     const char* shape;
