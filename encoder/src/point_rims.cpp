@@ -32,21 +32,20 @@ constexpr double kRimGap = 5.0 * std::numbers::pi / 6.0;
 // boundary points are a ragged spot in a sparse scan, not the edge of an
 // opening.
 constexpr int kSectors = 12;
-// Largest mean wall of a pair taken for a tube's two ends (the bound
-// hole_bridge.cpp builds tubes under), and the least cosine between the
-// gap and a facing rim's axis (its doubtful rule), on the points instead
-// of a sheet's loops.  Cut tubes' ends on the hole sweep: mean walls
-// 0.20-0.52; two arcs of one hole's rim in a sparse scan, taken for two
-// rims: 0.58.  The rims' walls move by 0.1-0.2 with a few points more or
-// less, so the margin is thin both ways.
-constexpr double kMaxWall = 0.55;
+// The largest mean wall of a pair taken for a tube's two ends
+// (kTubeEndMaxWall, point_rims.h: the bound hole_bridge.cpp builds tubes
+// under), and the least cosine between the gap and a facing rim's axis
+// (its doubtful rule), on the points instead of a sheet's loops.  Cut
+// tubes' ends on the hole sweep: mean walls 0.20-0.52; two arcs of one
+// hole's rim in a sparse scan, taken for two rims: 0.58.  The rims' walls
+// move by 0.1-0.2 with a few points more or less, so the margin is thin
+// both ways.
 constexpr double kMinFacing = 0.4;
-// rims_face_as_one_tube: least ratio of the two ends' tube radii.  On the
-// hole sweep (scan_bench --hole-sweep, 4,000 and 8,000 points) the loose
-// pairs of a tube the surface capped have 0.87 and 0.91; a false pair,
-// an arc of a band round 70 degrees of a tube and the end of another,
-// 0.57.
-constexpr double kSameTube = 0.75;
+// rims_face_as_one_tube's default least ratio of the two ends' tube radii
+// is 0.75.  On the hole sweep (scan_bench --hole-sweep, 4,000 and 8,000
+// points) the loose pairs of a tube the surface capped have 0.87 and 0.91;
+// a false pair, an arc of a band round 70 degrees of a tube and the end of
+// another, 0.57.
 // Longest gap between a pair's centres, in larger radii.
 constexpr double kMaxGap = 6;
 
@@ -216,7 +215,7 @@ std::vector<PointRim> link_rims(const RimPoints& points, const RimOptions& optio
   return rims;
 }
 
-std::vector<std::pair<size_t, size_t>> tube_end_pairs(const std::vector<PointRim>& rims) {
+std::vector<std::pair<size_t, size_t>> tube_end_pairs(const std::vector<PointRim>& rims, double max_wall) {
   std::vector<std::tuple<double, size_t, size_t>> scored;
   for (size_t a = 0; a < rims.size(); ++a)
     for (size_t b = a + 1; b < rims.size(); ++b) {
@@ -225,7 +224,7 @@ std::vector<std::pair<size_t, size_t>> tube_end_pairs(const std::vector<PointRim
       const double gap = len(d);
       const double big = std::max(ra.radius, rb.radius), small = std::min(ra.radius, rb.radius);
       if (gap <= 0 || small < 0.5 * big || gap > kMaxGap * big) continue;
-      if (0.5 * (ra.wall + rb.wall) >= kMaxWall) continue;
+      if (0.5 * (ra.wall + rb.wall) >= max_wall) continue;
       // Each axis points away from its opening, so across a gap the two
       // point apart: a faces b when the gap runs against a's axis.
       const V3 u{d[0] / gap, d[1] / gap, d[2] / gap};
@@ -241,13 +240,13 @@ std::vector<std::pair<size_t, size_t>> tube_end_pairs(const std::vector<PointRim
   return pairs;
 }
 
-bool rims_face_as_one_tube(const PointRim& a, const PointRim& b) {
+bool rims_face_as_one_tube(const PointRim& a, const PointRim& b, double same_tube) {
   const V3 d = sub(b.centre, a.centre);
   const double gap = len(d);
   if (gap <= 0) return false;
   const V3 u{d[0] / gap, d[1] / gap, d[2] / gap};
   const double small = std::min(a.tube_radius, b.tube_radius), big = std::max(a.tube_radius, b.tube_radius);
-  return dot(u, a.axis) < -kMinFacing && dot(u, b.axis) > kMinFacing && small >= kSameTube * big;
+  return dot(u, a.axis) < -kMinFacing && dot(u, b.axis) > kMinFacing && small >= same_tube * big;
 }
 
 namespace {

@@ -47,6 +47,22 @@ RimOptions split_rim_options() {
 // read 1.34-2.05; those of right rows (arcs of one bridged hole's edge)
 // 0.26-0.76.
 constexpr double kMinGapClearance = 1.0;
+// The fourth look (full_rim_options): the split rims that still run round
+// 8 of the 12 sectors, paired with walls up to kFullRimMaxWall (not
+// tube_end_pairs' 0.55) when both face each other with tube radii within
+// kFullRimSameTube and the gap is kMinGapClearance clear.  On the hole
+// sweeps and clean tori (4,000 and 8,000 points, bench/rim_probe) a tube
+// cut obliquely round a ring and capped reads walls 0.57, tube radii 0.96
+// and clearance 1.46; right rows' full, facing, uncapped pairs of tube
+// radii within 0.9 read clearance 0.37-0.42, and those 1.0 or more clear
+// have tube radii 0.62-0.70.
+RimOptions full_rim_options() {
+  RimOptions o = split_rim_options();
+  o.min_sectors = RimOptions{}.min_sectors;
+  return o;
+}
+constexpr double kFullRimMaxWall = 0.65;
+constexpr double kFullRimSameTube = 0.9;
 // Largest level (in triangles) the capped-rims test runs its inside tests on.
 constexpr size_t kJoinTestTriangles = size_t{1} << 16;
 // Points dropped as outliers before a warning.
@@ -307,6 +323,15 @@ ScanCheck check_scan(const Encoding& e, const PointIndex& index, unsigned thread
   // of 2, the ends come apart, with fewer sectors; so do arcs of plain
   // holes' edges, so a split pair counts only where the middle of its gap
   // is at least a tube's radius from the surface (gap_clearance).
+  //
+  // And a fourth time, from the split rims that still run most of the way
+  // round (full_rim_options): a tube's end cut obliquely reads a higher
+  // wall (its points' normals tilt toward the cut's plane), over
+  // tube_end_pairs' bound (the 4,000-point double torus cut 15% from
+  // (0.2,-1,-0.4): 0.57).  Such a pair counts with walls up to 0.65 when
+  // both ends face each other with tube radii within 0.9 of each other
+  // (one tube's two ends; arcs of one hole's edge read 0.6-0.7) and the
+  // gap is a tube's radius clear.
   if (!c.open && info.components > 0) {
     RimOptions loose;
     loose.min_sectors = 7;
@@ -319,7 +344,11 @@ ScanCheck check_scan(const Encoding& e, const PointIndex& index, unsigned thread
     const std::vector<std::pair<size_t, size_t>> pairs = tube_end_pairs(rims), loose_pairs = tube_end_pairs(loose_rims);
     const std::vector<PointRim> split_rims = link_rims(rim_points, split_rim_options());
     const std::vector<std::pair<size_t, size_t>> split_pairs = tube_end_pairs(split_rims);
-    if (!pairs.empty() || !loose_pairs.empty() || !split_pairs.empty()) {
+    const std::vector<PointRim> full_rims = link_rims(rim_points, full_rim_options());
+    std::vector<std::pair<size_t, size_t>> full_pairs;
+    for (const auto& [a, b] : tube_end_pairs(full_rims, kFullRimMaxWall))
+      if (rims_face_as_one_tube(full_rims[a], full_rims[b], kFullRimSameTube)) full_pairs.emplace_back(a, b);
+    if (!pairs.empty() || !loose_pairs.empty() || !split_pairs.empty() || !full_pairs.empty()) {
       TriangleMesh test = e.control;
       for (size_t l = 0; l < e.levels.triangles.size(); ++l)
         if (e.levels.triangles[l].size() / 3 <= kJoinTestTriangles)
@@ -337,15 +366,16 @@ ScanCheck check_scan(const Encoding& e, const PointIndex& index, unsigned thread
       c.capped_rim_pairs = std::max(c.capped_rim_pairs, loose_capped);
       // The split rims count only where the gap between them is empty
       // space (kMinGapClearance): they pair arcs of one hole's edge too.
-      uint32_t split_capped = 0;
-      if (!split_pairs.empty()) {
+      uint32_t split_capped = 0, full_capped = 0;
+      if (!split_pairs.empty() || !full_pairs.empty()) {
         const TriangleTree tree(test);
-        for (const auto& [a, b] : split_pairs) {
-          const PointRim &ra = split_rims[a], &rb = split_rims[b];
-          split_capped += !surface_joins(test, ra, rb) && gap_clearance(tree, ra, rb) >= kMinGapClearance;
-        }
+        const auto capped_clear = [&](const PointRim& ra, const PointRim& rb) {
+          return !surface_joins(test, ra, rb) && gap_clearance(tree, ra, rb) >= kMinGapClearance;
+        };
+        for (const auto& [a, b] : split_pairs) split_capped += capped_clear(split_rims[a], split_rims[b]);
+        for (const auto& [a, b] : full_pairs) full_capped += capped_clear(full_rims[a], full_rims[b]);
       }
-      c.capped_rim_pairs = std::max(c.capped_rim_pairs, split_capped);
+      c.capped_rim_pairs = std::max({c.capped_rim_pairs, split_capped, full_capped});
     }
   }
 

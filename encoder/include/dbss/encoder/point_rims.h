@@ -72,17 +72,20 @@ std::vector<PointRim> find_point_rims(const PointIndex& index, size_t max_points
 
 // Pairs of rims (indices into `rims`) that look like a tube's two cut ends:
 // sizes within a factor of two, a gap under six times the larger radius,
-// walls along the axes, and at least one rim facing the other across the
-// gap (as hole_bridge.h's doubtful pairs).
-std::vector<std::pair<size_t, size_t>> tube_end_pairs(const std::vector<PointRim>& rims);
+// walls along the axes (the two rims' mean PointRim::wall under
+// `max_wall`), and at least one rim facing the other across the gap (as
+// hole_bridge.h's doubtful pairs).
+constexpr double kTubeEndMaxWall = 0.55;
+std::vector<std::pair<size_t, size_t>> tube_end_pairs(const std::vector<PointRim>& rims,
+                                                      double max_wall = kTubeEndMaxWall);
 
 // Whether a pair of rims from tube_end_pairs is held to the stricter rule
 // the self-check's looser rims (RimOptions::min_sectors 7) must meet: each
 // rim faces the other across the gap (tube_end_pairs asks it of one), and
-// their tube radii agree within a factor of 0.75 (both ends of one cut
-// tube).  A
-// sparse rim is often an arc of a band's side, not a cut tube's end.
-bool rims_face_as_one_tube(const PointRim& a, const PointRim& b);
+// their tube radii agree within a factor of `same_tube` (both ends of one
+// cut tube).  A sparse rim is often an arc of a band's side, not a cut
+// tube's end.
+bool rims_face_as_one_tube(const PointRim& a, const PointRim& b, double same_tube = 0.75);
 
 // Whether a closed, outward-oriented surface joins the two rims of a pair:
 // the middle of the gap between them (on the chord and on the Hermite curve
