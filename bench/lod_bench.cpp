@@ -150,8 +150,8 @@ using bench::cut_holes;
 // direction (input to level: detail the level lacks; level to input: where
 // the level strays off the surface), both over the diagonal.
 void print_detail(const Encoding& en, const TriangleMesh& input, double diag, const MeshDistanceOptions& mo) {
-  std::printf("\n| level | odd | step / diag | LEVL bytes | bits / odd | zeros | abs(q) = 1 | clamped | cast missed | RDO lowered | input to level | level to input | max |\n"
-              "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+  std::printf("\n| level | odd | step / diag | LEVL bytes | coding | bits / odd | zeros | abs(q) = 1 | clamped | cast missed | RDO lowered | input to level | level to input | max |\n"
+              "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (uint32_t l = 1; l <= en.level_count; ++l) {
     const LevelStats& st = en.levels.stats[l - 1];
     const auto& q = en.levels.levels[l - 1].q;
@@ -160,8 +160,8 @@ void print_detail(const Encoding& en, const TriangleMesh& input, double diag, co
     const TriangleMesh m{en.levels.positions[l], en.levels.triangles[l]};
     const MeshDistance d = mesh_distance(input, m, mo);
     const double n = st.odd ? double(st.odd) : 1.0;
-    std::printf("| %u | %zu | %.2e | %zu | %.2f | %.0f%% | %.0f%% | %zu | %zu | %zu | %.2e | %.2e | %.2e |\n", l, st.odd,
-                st.step / diag, st.bytes, 8.0 * st.bytes / n, 100 * zeros / n, 100 * ones / n, st.clamped, st.by_nearest, st.rdo_lowered,
+    std::printf("| %u | %zu | %.2e | %zu | %d | %.2f | %.0f%% | %.0f%% | %zu | %zu | %zu | %.2e | %.2e | %.2e |\n", l, st.odd,
+                st.step / diag, st.bytes, static_cast<int>(en.contents.levels[l - 1].coding), 8.0 * st.bytes / n, 100 * zeros / n, 100 * ones / n, st.clamped, st.by_nearest, st.rdo_lowered,
                 d.a_to_b_mean / diag, d.b_to_a_mean / diag, d.max() / diag);
   }
 }
