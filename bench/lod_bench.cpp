@@ -5,7 +5,7 @@
 // bounding-box diagonal (measure/mesh_distance).  Also: dbss's QEM against
 // meshoptimizer's simplifier for the control mesh.
 //
-//   lod_bench [--levels N|auto] [--control-faces F] [--control-bits B] [--cut-holes H] [--hole-radius R] [--cut-only] [--loop-faces N] [--hole-tolerance T] [--hole-faces-per-vertex C] [--errors E1,E2,..] [--samples N] [--detail] [--quick] [--no-search] [--dense-step-ratio R] [--plain-rounding] [--control-grid S] [--no-boundary-values] [--fixed-control] [--floor-ratio R] [--bdry-levels MASK] [--bdry-always] [--rdo LAMBDA] [--rdo-from LEVEL] [--max-chain-ratio R] [--input-lod-share S] [--skip-absent] MESH...
+//   lod_bench [--levels N|auto] [--control-faces F] [--control-bits B] [--cut-holes H] [--hole-radius R] [--cut-only] [--loop-faces N] [--hole-tolerance T] [--hole-faces-per-vertex C] [--errors E1,E2,..] [--samples N] [--detail] [--quick] [--no-search] [--qps A..B] [--dense-step-ratio R] [--plain-rounding] [--control-grid S] [--no-boundary-values] [--fixed-control] [--floor-ratio R] [--bdry-levels MASK] [--bdry-always] [--rdo LAMBDA] [--rdo-from LEVEL] [--max-chain-ratio R] [--input-lod-share S] [--skip-absent] MESH...
 //
 // With no MESH: the libcgal-demo meshes under test-data/ (closed, with
 // holes, several components); --cut-holes H adds each mesh again with H
@@ -62,6 +62,7 @@ struct Args {
   bool detail = false;  // --detail: where each level's bytes and error go
   bool quick = false;   // --quick: no simplifier comparison, no decode timing (for sweeps)
   bool no_search = false;  // --no-search: the equal-error table on the targets' grid only
+  int search_qp_min = 8, search_qp_max = 14;  // --qps A..B: search only these Draco qps (the rest print "not searched")
   double dense_step_ratio = kMeshDenseStepRatio;  // --dense-step-ratio R (1: one step for every level)
   bool round_along_surface = true;  // --plain-rounding: Draco's own rounding of the control mesh
   double control_grid_steps = MeshEncodeOptions{}.control_grid_steps;  // --control-grid S: Draco's grid in steps
@@ -149,8 +150,8 @@ using bench::cut_holes;
 // direction (input to level: detail the level lacks; level to input: where
 // the level strays off the surface), both over the diagonal.
 void print_detail(const Encoding& en, const TriangleMesh& input, double diag, const MeshDistanceOptions& mo) {
-  std::printf("\n| level | odd | step / diag | LEVL bytes | bits / odd | zeros | abs(q) = 1 | clamped | cast missed | RDO lowered | input to level | level to input | max |\n"
-              "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+  std::printf("\n| level | odd | step / diag | LEVL bytes | coding | bits / odd | zeros | abs(q) = 1 | clamped | cast missed | RDO lowered | input to level | level to input | max |\n"
+              "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (uint32_t l = 1; l <= en.level_count; ++l) {
     const LevelStats& st = en.levels.stats[l - 1];
     const auto& q = en.levels.levels[l - 1].q;
@@ -159,8 +160,8 @@ void print_detail(const Encoding& en, const TriangleMesh& input, double diag, co
     const TriangleMesh m{en.levels.positions[l], en.levels.triangles[l]};
     const MeshDistance d = mesh_distance(input, m, mo);
     const double n = st.odd ? double(st.odd) : 1.0;
-    std::printf("| %u | %zu | %.2e | %zu | %.2f | %.0f%% | %.0f%% | %zu | %zu | %zu | %.2e | %.2e | %.2e |\n", l, st.odd,
-                st.step / diag, st.bytes, 8.0 * st.bytes / n, 100 * zeros / n, 100 * ones / n, st.clamped, st.by_nearest, st.rdo_lowered,
+    std::printf("| %u | %zu | %.2e | %zu | %d | %.2f | %.0f%% | %.0f%% | %zu | %zu | %zu | %.2e | %.2e | %.2e |\n", l, st.odd,
+                st.step / diag, st.bytes, static_cast<int>(en.contents.levels[l - 1].coding), 8.0 * st.bytes / n, 100 * zeros / n, 100 * ones / n, st.clamped, st.by_nearest, st.rdo_lowered,
                 d.a_to_b_mean / diag, d.b_to_a_mean / diag, d.max() / diag);
   }
 }
@@ -472,6 +473,10 @@ int run_mesh(const std::string& path, Args args, uint32_t holes = 0) {
       const char* grid = nullptr;
       char grid_text[32];
       if (grid_ratio[k] > 0) std::snprintf(grid_text, sizeof grid_text, "%.2f", grid_ratio[k]), grid = grid_text;
+      if (d.qp < args.search_qp_min || d.qp > args.search_qp_max) {
+        std::printf("| %d | %zu | %.2e | - | - | - | not searched | %s |\n", d.qp, d.bytes, d.error, grid ? grid : "not reached");
+        continue;
+      }
       const auto best = curve.smallest_prefix_at(d.error);
       if (!best) {
         std::printf("| %d | %zu | %.2e | - | - | - | not reached | %s |\n", d.qp, d.bytes, d.error, grid ? grid : "not reached");
@@ -547,6 +552,12 @@ int main(int argc, char** argv) {
     else if (a == "--control-grid" && i + 1 < argc) args.control_grid_steps = std::atof(argv[++i]);
     else if (a == "--quick") args.quick = true;
     else if (a == "--no-search") args.no_search = true;
+    else if (a == "--qps" && i + 1 < argc) {
+      const std::string v = argv[++i];
+      const size_t dots = v.find("..");
+      args.search_qp_min = std::atoi(v.substr(0, dots).c_str());
+      args.search_qp_max = dots == std::string::npos ? args.search_qp_min : std::atoi(v.substr(dots + 2).c_str());
+    }
     else if (a == "--no-boundary-values") args.boundary_values = false;
     else if (a == "--fixed-control") args.fixed_control = true;
     else if (a == "--floor-ratio" && i + 1 < argc) args.floor_ratio = std::atof(argv[++i]);
@@ -567,7 +578,7 @@ int main(int argc, char** argv) {
     else if (a == "--max-chain-ratio" && i + 1 < argc) args.max_chain_ratio = std::atof(argv[++i]);
     else if (a == "--input-lod-share" && i + 1 < argc) args.input_lod_share = std::atof(argv[++i]);
     else if (!a.empty() && a[0] == '-') {
-      std::fprintf(stderr, "usage: lod_bench [--levels N|auto] [--control-faces F] [--control-bits B] [--cut-holes H] [--hole-radius R] [--cut-only] [--loop-faces N] [--hole-tolerance T] [--hole-faces-per-vertex C] [--errors E1,E2] [--samples N] [--detail] [--quick] [--no-search] [--dense-step-ratio R] [--plain-rounding] [--control-grid S] [--no-boundary-values] [--fixed-control] [--floor-ratio R] [--bdry-levels MASK] [--bdry-always] [--rdo LAMBDA] [--rdo-from LEVEL] [--max-chain-ratio R] [--input-lod-share S] [--skip-absent] MESH...\n");
+      std::fprintf(stderr, "usage: lod_bench [--levels N|auto] [--control-faces F] [--control-bits B] [--cut-holes H] [--hole-radius R] [--cut-only] [--loop-faces N] [--hole-tolerance T] [--hole-faces-per-vertex C] [--errors E1,E2] [--samples N] [--detail] [--quick] [--no-search] [--qps A..B] [--dense-step-ratio R] [--plain-rounding] [--control-grid S] [--no-boundary-values] [--fixed-control] [--floor-ratio R] [--bdry-levels MASK] [--bdry-always] [--rdo LAMBDA] [--rdo-from LEVEL] [--max-chain-ratio R] [--input-lod-share S] [--skip-absent] MESH...\n");
       return 1;
     } else args.meshes.push_back(a);
   }

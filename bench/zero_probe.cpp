@@ -11,12 +11,18 @@
 //  - a geometric context a decoder could compute before a level's values:
 //    how far the butterfly point sits off its edge's chord, in steps
 //    (zero decision by its size, sign by its sign).
+// And (sixteenth session) contexts from the spatial neighbours a decoder has
+// already read: the level's edges that share a triangle with this one and
+// come before it, or the edge's end vertices' own values at the level
+// before; a few context sets over the same values, the first of them spec
+// 9b's own (checked to cost what the model costs).
 // The ideal costing is checked against the encoder's real coding-2 chunks
 // (exit 2 when a level differs by more than 0.2% + 6 bytes: the flush
 // adds about 4; a model adapting at 1/16 instead of 1/32 is 1% off), so the
 // simulations start from the coder the files use.
 //   zero_probe [--levels L] [--error E] [--faces F] [--rdo LAMBDA] MESH
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -288,6 +294,167 @@ int main(int argc, char** argv) {
                 double(against) / std::max<size_t>(nz, 1));
   }
   std::printf("geometric contexts, all levels: %.0f bytes (%+.1f%%)\n", geo_all / 8, 100 * (geo_all - all_bits) / all_bits);
+
+  // Spatial neighbours (sixteenth session): the values a decoder has already
+  // read on the level's edges that share a triangle with this one (lower
+  // edge ids: up to four), S their sum and A their absolute sum.
+  //  - context: zero decision by (today's context, min(A, 4)), sign by
+  //    (today's, sign of S), magnitudes as today;
+  //  - prediction: r = q - round(S / count) coded with today's model;
+  //  - parents: the edge's two end vertices' own q when they are odd
+  //    vertices of the level before (0 for even ends), P their sum: zero
+  //    by (today's, min(|P|, 4)), sign by (today's, sign of P).
+  std::printf("\n| level | today bits/odd | neighbour context | prediction from neighbours | parent-end context | both contexts | P(sign q = sign S), q and S non-zero |\n|---|---|---|---|---|---|---|\n");
+  double nb_all[4] = {};
+  for (uint32_t m = 0; m < L; ++m) {
+    const auto& T = en.levels.triangles[m];
+    const size_t E = q[m + 1].size();
+    const size_t Vprev = m > 0 ? en.levels.positions[m - 1].size() / 3 : 0, V = en.levels.positions[m].size() / 3;
+    std::vector<std::vector<uint32_t>> nb(E);
+    std::vector<std::array<uint32_t, 2>> ends(E);
+    for (size_t f = 0; f < T.size() / 3; ++f)
+      for (int k = 0; k < 3; ++k) {
+        const uint32_t e = edge_of[m][3 * f + k];
+        ends[e] = {T[3 * f + k], T[3 * f + (k + 1) % 3]};
+        for (int j = 1; j < 3; ++j) {
+          const uint32_t o2 = edge_of[m][3 * f + (k + j) % 3];
+          if (o2 < e && std::find(nb[e].begin(), nb[e].end(), o2) == nb[e].end()) nb[e].push_back(o2);
+        }
+      }
+    auto parent_q = [&](uint32_t v) { return m > 0 && v >= Vprev && v < V ? q[m][v - Vprev] : 0; };
+    Model pred_model;
+    Costs pred_costs;
+    Prob z1[7][5], s1[3][3], z2[7][5], s2[3][3], z3[7][5][5], s3[3][3][3], mag[7][14], expo[25];
+    double b1 = 0, b2 = 0, b3 = 0, mb = 0;
+    size_t agree = 0, both = 0;
+    int32_t q1 = 0, q2 = 0;
+    for (size_t e = 0; e < E; ++e) {
+      const int32_t v = q[m + 1][e];
+      int32_t S = 0, A = 0;
+      for (uint32_t o2 : nb[e]) S += q[m + 1][o2], A += std::abs(q[m + 1][o2]);
+      const int32_t P = parent_q(ends[e][0]) + parent_q(ends[e][1]);
+      const double mean = nb[e].empty() ? 0.0 : double(S) / double(nb[e].size());
+      pred_model.code(v - static_cast<int32_t>(std::lround(mean)), pred_costs);
+      const uint32_t ctx = std::min<uint32_t>(std::abs(q1) + std::abs(q2), 6);
+      const uint32_t s = q1 == 0 ? 0 : q1 > 0 ? 1 : 2;
+      const uint32_t a = std::min<int32_t>(A, 4), pa = std::min<int32_t>(std::abs(P), 4);
+      const uint32_t ss = S == 0 ? 0 : S > 0 ? 1 : 2, ps = P == 0 ? 0 : P > 0 ? 1 : 2;
+      b1 += z1[ctx][a].code(v != 0);
+      b2 += z2[ctx][pa].code(v != 0);
+      b3 += z3[ctx][a][pa].code(v != 0);
+      if (v != 0) {
+        b1 += s1[s][ss].code(v < 0);
+        b2 += s2[s][ps].code(v < 0);
+        b3 += s3[s][ss][ps].code(v < 0);
+        if (S != 0) ++both, agree += (v > 0) == (S > 0);
+        const uint32_t mm = std::abs(v);
+        for (uint32_t j = 1; j <= 14; ++j) {
+          if (j == mm) { mb += mag[ctx][j - 1].code(0); break; }
+          mb += mag[ctx][j - 1].code(1);
+        }
+        if (mm >= 15) {
+          const uint32_t x = mm - 14;
+          const int ex = 31 - __builtin_clz(x);
+          for (int k = 0; k < ex; ++k) mb += expo[k].code(1);
+          mb += expo[ex].code(0) + ex;
+        }
+      }
+      q2 = q1, q1 = v;
+    }
+    const double odd = double(E), today = level_bits[m + 1];
+    const double r[4] = {b1 + mb, pred_costs.total(), b2 + mb, b3 + mb};
+    for (int k = 0; k < 4; ++k) nb_all[k] += r[k];
+    std::printf("| %u | %.3f |", m + 1, today / odd);
+    for (int k = 0; k < 4; ++k) std::printf(" %.3f (%+.1f%%) |", r[k] / odd, 100 * (r[k] - today) / today);
+    std::printf(" %.2f |\n", double(agree) / std::max<size_t>(both, 1));
+  }
+  // Context variants over the same features (ids: zero, sign, magnitude
+  // context of each value), to see how far the neighbours' values go.
+  struct Feat { int32_t v, c, s, A, S, k; };
+  struct Variant { const char* name; int (*zero)(const Feat&); int (*sign)(const Feat&); int (*mag)(const Feat&); };
+  static const Variant variants[] = {
+      {"today (seq)", [](const Feat& f) { return f.c; }, [](const Feat& f) { return f.s; }, [](const Feat& f) { return f.c; }},
+      {"V1 z(c,A4) s(s,sgnS)", [](const Feat& f) { return f.c * 8 + std::min(f.A, 4); },
+       [](const Feat& f) { return f.s * 3 + (f.S > 0 ? 1 : f.S < 0 ? 2 : 0); }, [](const Feat& f) { return f.c; }},
+      {"V2 z(c,A6) s(s,S+-3) m(c,A3)", [](const Feat& f) { return f.c * 8 + std::min(f.A, 6); },
+       [](const Feat& f) { return f.s * 8 + std::clamp(f.S, -3, 3) + 3; }, [](const Feat& f) { return f.c * 4 + std::min(f.A, 3); }},
+      {"V3 z(min(c,3),A6,k) s(S+-3) m(min(c+A,6))", [](const Feat& f) { return (std::min(f.c, 3) * 8 + std::min(f.A, 6)) * 5 + f.k; },
+       [](const Feat& f) { return std::clamp(f.S, -3, 3) + 3; }, [](const Feat& f) { return std::min(f.c + f.A, 6); }},
+      {"V4 z(c,A6,k) s(s,S+-3,k) m(c,A3)", [](const Feat& f) { return (f.c * 8 + std::min(f.A, 6)) * 5 + f.k; },
+       [](const Feat& f) { return (f.s * 8 + std::clamp(f.S, -3, 3) + 3) * 5 + f.k; }, [](const Feat& f) { return f.c * 4 + std::min(f.A, 3); }},
+  };
+  constexpr size_t kVariants = sizeof variants / sizeof variants[0];
+  std::vector<double> var_all(kVariants, 0.0);
+  std::printf("\n| level |");
+  for (const Variant& v : variants) std::printf(" %s |", v.name);
+  std::printf("\n|---|");
+  for (size_t i = 0; i < kVariants; ++i) std::printf("---|");
+  std::printf("\n");
+  for (uint32_t m = 0; m < L; ++m) {
+    const auto& T = en.levels.triangles[m];
+    const size_t E = q[m + 1].size();
+    std::vector<std::vector<uint32_t>> nb(E);
+    for (size_t f = 0; f < T.size() / 3; ++f)
+      for (int k = 0; k < 3; ++k) {
+        const uint32_t e = edge_of[m][3 * f + k];
+        for (int j = 1; j < 3; ++j) {
+          const uint32_t o2 = edge_of[m][3 * f + (k + j) % 3];
+          if (o2 < e && std::find(nb[e].begin(), nb[e].end(), o2) == nb[e].end()) nb[e].push_back(o2);
+        }
+      }
+    std::vector<Feat> feats(E);
+    int32_t q1 = 0, q2 = 0;
+    for (size_t e = 0; e < E; ++e) {
+      Feat& f = feats[e];
+      f.v = q[m + 1][e];
+      f.c = std::min<int32_t>(std::abs(q1) + std::abs(q2), 6);
+      f.s = q1 == 0 ? 0 : q1 > 0 ? 1 : 2;
+      f.A = f.S = 0;
+      for (uint32_t o2 : nb[e]) f.S += q[m + 1][o2], f.A += std::abs(q[m + 1][o2]);
+      f.k = std::min<int32_t>(static_cast<int32_t>(nb[e].size()), 4);
+      q2 = q1, q1 = f.v;
+    }
+    std::printf("| %u |", m + 1);
+    for (size_t vi = 0; vi < kVariants; ++vi) {
+      std::unordered_map<int, Prob> zero, sign;
+      std::unordered_map<int, std::array<Prob, 14>> mag;
+      Prob expo[25];
+      double bits = 0;
+      for (const Feat& f : feats) {
+        bits += zero[variants[vi].zero(f)].code(f.v != 0);
+        if (f.v == 0) continue;
+        bits += sign[variants[vi].sign(f)].code(f.v < 0);
+        auto& mg = mag[variants[vi].mag(f)];
+        const uint32_t mm = std::abs(f.v);
+        for (uint32_t j = 1; j <= 14; ++j) {
+          if (j == mm) { bits += mg[j - 1].code(0); break; }
+          bits += mg[j - 1].code(1);
+        }
+        if (mm >= 15) {
+          const uint32_t x = mm - 14;
+          const int ex = 31 - __builtin_clz(x);
+          for (int k = 0; k < ex; ++k) bits += expo[k].code(1);
+          bits += expo[ex].code(0) + ex;
+        }
+      }
+      var_all[vi] += bits;
+      // The first variant is spec 9b's own contexts: it must cost what the
+      // model above costs, or the harness is not measuring the same coder.
+      if (vi == 0 && std::abs(bits - level_bits[m + 1]) > 1e-6 * level_bits[m + 1] + 1e-6) {
+        std::fprintf(stderr, "level %u: the variants' harness costs today's contexts at %.1f bits, the model at %.1f\n", m + 1,
+                     bits, level_bits[m + 1]);
+        return 2;
+      }
+      std::printf(" %.3f (%+.1f%%) |", bits / double(E), 100 * (bits - level_bits[m + 1]) / level_bits[m + 1]);
+    }
+    std::printf("\n");
+  }
+  std::printf("all levels:");
+  for (size_t vi = 0; vi < kVariants; ++vi) std::printf(" %s %+.1f%%;", variants[vi].name, 100 * (var_all[vi] - all_bits) / all_bits);
+  std::printf("\n");
+  std::printf("all levels: neighbour context %+.1f%%, prediction %+.1f%%, parent ends %+.1f%%, both %+.1f%%\n",
+              100 * (nb_all[0] - all_bits) / all_bits, 100 * (nb_all[1] - all_bits) / all_bits,
+              100 * (nb_all[2] - all_bits) / all_bits, 100 * (nb_all[3] - all_bits) / all_bits);
   std::printf("\ntoday, all levels: %.0f bits = %.0f bytes (ideal costing)\n", all_bits, all_bits / 8);
   return 0;
 }

@@ -296,7 +296,7 @@ Result<EncodedLevels> encode_levels(const TriangleMesh& control, const LevelSamp
     bool dropped = false;
     if (!sampler.boundary) {
       r.refine(odd_choice, step, level.q, threads);
-    } else if (!o.boundary_when_pays || rdo || smooth || !o.creases.empty()) {
+    } else if (!o.boundary_when_pays || smooth || !o.creases.empty()) {
       r.refine(odd_choice, step, level.q, bchoose, step, bq, threads);
     } else {
       // BDRY only where it pays: the level refined with its values on a
@@ -319,7 +319,9 @@ Result<EncodedLevels> encode_levels(const TriangleMesh& control, const LevelSamp
       }
       auto trial = LevelRefiner::create(TriangleMesh{std::vector<float>(P.begin(), P.end()), std::vector<uint32_t>(T.begin(), T.end())});
       if (!trial.ok()) return trial.status();
-      trial.value().refine(choose, step, level.q, bchoose, step, bq, threads);
+      // With RDO the trial takes the planned integers (odd_choice), as the
+      // level would without the rule.
+      trial.value().refine(odd_choice, step, level.q, bchoose, step, bq, threads);
       const bool any = std::any_of(bq.begin(), bq.end(), [](int32_t v) { return v != 0; });
       if (any) {
         level.boundary.step = step;

@@ -491,6 +491,45 @@ TEST_CASE("mesh input: BDRY only where it pays, and a level without it is the bo
   }
 }
 
+// RDO levels go through the same rule (they wrote BDRY at every level
+// before the sixteenth session: `rdo` bypassed boundary_worth), with the
+// trial refined from the planned integers so the closed loop holds.
+TEST_CASE("mesh input with RDO: BDRY only where it pays as without RDO", "[mesh_input][rdo]") {
+  const TriangleMesh input = sphere_with_holes(40, 80);
+  EncodeOptions o;
+  o.levels = 3;
+  o.error = 1e-4;
+  MeshEncodeOptions rdo;
+  rdo.rdo_lambda = 0.15;
+  rdo.rdo_first_level = 1;
+  MeshEncodeOptions always = rdo;
+  always.boundary_when_pays = false;
+  auto ruled = encode_mesh(input, o, rdo);
+  auto every = encode_mesh(input, o, always);
+  REQUIRE(ruled.ok());
+  REQUIRE(every.ok());
+  const Encoding& a = ruled.value().encoding;
+  const Encoding& b = every.value().encoding;
+  size_t dropped = 0, lowered = 0;
+  for (size_t i = 0; i < a.contents.levels.size(); ++i) {
+    const LevelStats& st = a.levels.stats[i];
+    INFO("level " << i + 1 << ": gain " << st.boundary_worth.gain << " cost " << st.boundary_worth.cost);
+    CHECK(!b.contents.levels[i].boundary.empty());
+    CHECK(st.boundary_dropped == !st.boundary_worth.pays());
+    CHECK(a.contents.levels[i].boundary.empty() == st.boundary_dropped);
+    dropped += st.boundary_dropped;
+    lowered += st.rdo_lowered;
+  }
+  CHECK(dropped >= 2);
+  CHECK(lowered > 0);
+  CHECK(a.bytes.size() < b.bytes.size());
+  for (int l = 0; l <= 3; ++l) {
+    auto d = decode_bytes(a.bytes, l);
+    REQUIRE(d.ok());
+    CHECK(d.value().positions == a.levels.positions[static_cast<size_t>(l)]);
+  }
+}
+
 TEST_CASE("mesh input: a closed mesh's file does not change with boundary values on", "[mesh_input]") {
   const TriangleMesh input = test::torus(48, 24);
   EncodeOptions o;
