@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "../../encoder/src/control_choice.h"
+#include "dbss/io/geometry_files.h"
 
 namespace dbss {
 
@@ -77,6 +78,35 @@ const std::vector<RdPoint> kElephant10 = {{4000, 0.000613}, {6500, 0.000471}, {1
 const std::vector<RdPoint> kElephant9 = {{3400, 0.00065}, {5900, 0.000455}, {12900, 0.000305}, {22800, 0.000281}};
 
 }  // namespace
+
+TEST_CASE("control bits: the area-weighted distance counts each vertex by the surface it stands for") {
+  // Points on the plane z = 0 over the unit square; the level is that
+  // square (2 triangles, on the points) plus a patch of 10 x 10 vertices
+  // 0.01 wide lifted 0.05 off the plane.  Over the vertices the patch's 100
+  // vertices carry the vertices' half (about 0.048, so the mean of the two
+  // halves is about 0.024); over the area they stand for 1e-4 of it.
+  // Without the weighting both figures are 0.024.
+  PointCloud pc;
+  for (int i = 0; i <= 100; ++i)
+    for (int j = 0; j <= 100; ++j) pc.xyz.insert(pc.xyz.end(), {0.01f * static_cast<float>(i), 0.01f * static_cast<float>(j), 0.0f});
+  const PointIndex index(pc);
+  std::vector<float> positions = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0};
+  std::vector<uint32_t> triangles = {0, 1, 2, 0, 2, 3};
+  for (int i = 0; i < 10; ++i)
+    for (int j = 0; j < 10; ++j)
+      positions.insert(positions.end(), {0.5f + 0.001f * static_cast<float>(i), 0.5f + 0.001f * static_cast<float>(j), 0.05f});
+  for (uint32_t i = 0; i < 9; ++i)
+    for (uint32_t j = 0; j < 9; ++j) {
+      const uint32_t a = 4 + 10 * i + j;
+      triangles.insert(triangles.end(), {a, a + 10, a + 11, a, a + 11, a + 1});
+    }
+  const double by_vertex = level_distance_to_points(positions, triangles, index);
+  const double by_area = level_distance_to_points(positions, triangles, index, true);
+  INFO("over the vertices " << by_vertex << ", over the area " << by_area);
+  // The points' half is the same in both (the points are all on the square).
+  CHECK(by_vertex > 0.02);
+  CHECK(by_area < 0.001);
+}
 
 TEST_CASE("control bits: fewer bits are kept where their curve reaches every level in no more bytes") {
   // Level 0's bits (the old rule, 10) are not the armadillo's best: 9 reaches
