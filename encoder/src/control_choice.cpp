@@ -15,7 +15,7 @@ namespace dbss {
 // through every point is near all of them; the vertices of one that cuts
 // corners are near the points' planes).
 double level_distance_to_points(const std::vector<float>& positions, const std::vector<uint32_t>& triangles,
-                                const PointIndex& index) {
+                                const PointIndex& index, bool area_weighted) {
   const PointCloud& pc = index.points();
   const TriangleMesh level{positions, triangles};
   const TriangleTree tree(level);
@@ -27,6 +27,33 @@ double level_distance_to_points(const std::vector<float>& positions, const std::
     to_level += tree.distance(p);
   }
   const size_t v = positions.size() / 3, k = std::min(v, kRdProbe);
+  if (area_weighted) {
+    std::vector<double> area(v, 0.0);
+    for (size_t f = 0; f + 2 < triangles.size(); f += 3) {
+      const float* a = &positions[3 * size_t{triangles[f]}];
+      const float* b = &positions[3 * size_t{triangles[f + 1]}];
+      const float* c = &positions[3 * size_t{triangles[f + 2]}];
+      const double u[3] = {double{b[0]} - a[0], double{b[1]} - a[1], double{b[2]} - a[2]};
+      const double w[3] = {double{c[0]} - a[0], double{c[1]} - a[1], double{c[2]} - a[2]};
+      const double x = u[1] * w[2] - u[2] * w[1], y = u[2] * w[0] - u[0] * w[2], z = u[0] * w[1] - u[1] * w[0];
+      const double third = std::sqrt(x * x + y * y + z * z) / 6;
+      for (int j = 0; j < 3; ++j) area[triangles[f + j]] += third;
+    }
+    uint32_t near[8];
+    float d2[8];
+    double sum = 0, weight = 0;
+    for (size_t s = 0; s < k; ++s) {
+      const size_t i = s * v / k;
+      const size_t found = index.nearest_k(&positions[3 * i], 8, near, d2);
+      const PointPlane plane = fit_plane(pc, near, found);
+      double dist = 0;
+      for (int j = 0; j < 3; ++j) dist += (double{positions[3 * i + j]} - plane.point[j]) * plane.normal[j];
+      sum += area[i] * std::abs(dist);
+      weight += area[i];
+    }
+    const double to_points = weight > 0 ? sum / weight : 0;
+    return 0.5 * (to_level / static_cast<double>(std::max<size_t>(m, 1)) + to_points);
+  }
   std::vector<float> probe;
   probe.reserve(3 * k);
   for (size_t s = 0; s < k; ++s) probe.insert(probe.end(), &positions[3 * (s * v / k)], &positions[3 * (s * v / k)] + 3);
@@ -34,7 +61,7 @@ double level_distance_to_points(const std::vector<float>& positions, const std::
   return 0.5 * (to_level / static_cast<double>(std::max<size_t>(m, 1)) + to_points);
 }
 
-std::vector<RdPoint> encoder_rd_curve(const Encoding& e, const PointIndex& index) {
+std::vector<RdPoint> encoder_rd_curve(const Encoding& e, const PointIndex& index, bool area_weighted) {
   std::vector<RdPoint> curve;
   const size_t points = index.points().size();
   double bytes = static_cast<double>(e.contents.control_mesh.size());
@@ -44,7 +71,7 @@ std::vector<RdPoint> encoder_rd_curve(const Encoding& e, const PointIndex& index
       if (e.levels.positions[l - 1].size() / 3 > points) break;
       bytes += static_cast<double>(e.levels.chunks[l - 1].size());
     }
-    curve.push_back({bytes, level_distance_to_points(e.levels.positions[l], e.levels.triangles[l], index), e.levels.positions[l].size() / 3});
+    curve.push_back({bytes, level_distance_to_points(e.levels.positions[l], e.levels.triangles[l], index, area_weighted), e.levels.positions[l].size() / 3});
   }
   return curve;
 }
@@ -85,6 +112,13 @@ bool keep_coarse_control(const std::vector<RdPoint>& coarse, const std::vector<R
   // does, that is bytes the user would spend anyway at that error.
   if (targets.empty()) return rd_curve_dominates(coarse, fine);
   return rd_curve_dominates(coarse, targets);
+}
+
+int fewest_control_bits(int kept_bits, const std::vector<RdPoint>& kept, const std::vector<BitsCurve>& candidates) {
+  int best = kept_bits;
+  for (const BitsCurve& c : candidates)
+    if (c.bits < best && rd_curve_dominates(c.curve, kept)) best = c.bits;
+  return best;
 }
 
 }  // namespace dbss

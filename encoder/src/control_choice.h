@@ -24,8 +24,11 @@ struct RdPoint {
 // The mean of two distances between a level and the points (model units):
 // (a stride of at most kRdProbe of) the points to the level's triangles, and
 // the level's vertices to the least-squares plane of their 8 nearest points.
+// `area_weighted`: the vertices' half is a mean over the surface (each
+// vertex weighted by a third of its triangles' area), as the points' half
+// and the benchmark's error are, instead of a mean over the vertices.
 double level_distance_to_points(const std::vector<float>& positions, const std::vector<uint32_t>& triangles,
-                                const PointIndex& index);
+                                const PointIndex& index, bool area_weighted = false);
 
 // The curve of `e` (its levels encoded, not yet serialized) from level 0 up
 // to the level that crosses the points' density: the later levels store
@@ -34,7 +37,7 @@ double level_distance_to_points(const std::vector<float>& positions, const std::
 // At most kRdProbe points and vertices per level are measured (evenly
 // strided), so the cost stays under a second a level on any input.
 inline constexpr size_t kRdProbe = size_t{1} << 16;
-std::vector<RdPoint> encoder_rd_curve(const Encoding& e, const PointIndex& index);
+std::vector<RdPoint> encoder_rd_curve(const Encoding& e, const PointIndex& index, bool area_weighted = false);
 
 // The coarser candidate's fidelity allowance: its curve must reach each of
 // the finer candidate's errors times this, in no more bytes.  2%, the
@@ -61,5 +64,19 @@ bool rd_curve_dominates(const std::vector<RdPoint>& coarse, const std::vector<Rd
 // where the distances are still the shape's, are all targets; a clean
 // cloud compares every level as before.
 bool keep_coarse_control(const std::vector<RdPoint>& coarse, const std::vector<RdPoint>& fine, bool noisy, size_t points);
+
+// One candidate of Draco's position bits for the kept control mesh and its
+// curve (encode.cpp, choose_control_bits).
+struct BitsCurve {
+  int bits = 0;
+  std::vector<RdPoint> curve;
+};
+
+// The fewest bits among `candidates` whose curve reaches every level of
+// `kept` (the curve at `kept_bits`, level 0's) within kRdTolerance in no more
+// bytes (rd_curve_dominates); `kept_bits` when none does.  Each candidate is
+// compared with `kept`, not with the next finer candidate, so the tolerance
+// does not add up over steps.
+int fewest_control_bits(int kept_bits, const std::vector<RdPoint>& kept, const std::vector<BitsCurve>& candidates);
 
 }  // namespace dbss

@@ -242,6 +242,9 @@ Status encode_over_control(Encoding& e, const PointIndex& index, const PointNois
   return {};
 }
 
+// A clean cloud: neither noisy nor mildly noisy (the tight kernel's).
+bool clean_cloud(const PointNoise& noise) { return noise.quiet && !noise.noisy; }
+
 // The control mesh by rate-distortion (control_choice.h): `e` holds the
 // encoding over the default face count; `coarse`, a copy of `e` taken
 // before its levels, gets a quarter of those faces and its own levels, and
@@ -343,6 +346,72 @@ Status choose_control(Encoding& e, Encoding coarse, const PointIndex& index, con
   // Kept, the coarse candidate's own stages are in e.seconds; the default's,
   // which ran before `t`, are what it cost.
   e.seconds.choice = keep_coarse ? since(t) - (e.seconds.control + e.seconds.draco + e.seconds.levels) + default_work : since(t);
+  return {};
+}
+
+// How many bits under level 0's the bits choice tries (choose_control_bits).
+constexpr int kFewerControlBits = 2;
+
+// Draco's position bits by rate-distortion, on a clean cloud whose control
+// mesh was chosen (choose_control): `e` holds the kept mesh encoded with
+// level 0's bits b; the same mesh is encoded with b - 1 and b - 2 up to the
+// level that crosses the points' density (encoder_rd_curve's end: later
+// levels store only zeros), and the fewest bits whose curve reaches every
+// level of b's within 2% in no more bytes (fewest_control_bits: the face
+// choice's rule, rd_curve_dominates) is kept and encoded again in full.
+// The distances are means over the surface (each vertex weighted by its
+// area), as the benchmark's error is.  Why: level 0's bits are chosen from
+// level 0 alone, before any level is seen, and a coarser grid is often
+// corrected by the levels for free.  30k clean points, seed 1
+// (bench/rd_bench.md, sixteenth session): the armadillo takes 9 bits (10)
+// and the knot 9 (10), their prefix at Poisson + Draco qp10's error
+// 0.551 -> 0.484 and 0.768 -> 0.651 of its bytes, the armadillo's at
+// advancing front + Draco qp10's 0.395 -> 0.389; the elephant keeps 11
+// (at 10 and 9 its floor is 6% farther from the points; against the truth
+// 9 bits put it 14% farther, fifteenth session), the eight and bunny00
+// keep their quarter mesh's 10 and 9.  A finer grid is not tried: level
+// 0's bits are already the step's or coarser, and more bits did not lower
+// the floor (elephant at 11/13/16 bits: 1.680/1.748/1.754e-4).
+Status choose_control_bits(Encoding& e, const PointIndex& index, const PointNoise& noise, const EncodeOptions& o) {
+  const auto t = Clock::now();
+  const std::vector<RdPoint> kept = encoder_rd_curve(e, index, true);
+  const int bits = e.control_bits;
+  if (kept.size() < 2 || bits <= 8) return {};
+  // The candidates stop at the crossing level: the kept curve's last.
+  const uint32_t levels = static_cast<uint32_t>(kept.size() - 1);
+  const auto describe = [](int b, const std::vector<RdPoint>& c) {
+    std::string s = std::to_string(b) + " bits (";
+    char buf[48];
+    for (size_t i = 0; i < c.size(); ++i) std::snprintf(buf, sizeof buf, "%s%.0f B %.4g", i ? ", " : "", c[i].bytes, c[i].error), s += buf;
+    return s + ")";
+  };
+  std::string why = describe(bits, kept);
+  std::vector<BitsCurve> candidates;
+  for (int b = bits - 1; b >= std::max(8, bits - kFewerControlBits); --b) {
+    EncodedLevels levels_kept = std::move(e.levels);
+    Encoding c = e;
+    e.levels = std::move(levels_kept);
+    EncodeOptions oc = o;
+    oc.control_bits = b;
+    oc.levels = levels;
+    oc.on_progress = nullptr;
+    if (o.on_progress) {
+      const std::string prefix = "control bits candidate (" + std::to_string(b) + "): ";
+      oc.on_progress = [prefix, &o](const std::string& s) { o.on_progress(prefix + s); };
+    }
+    if (Status st = encode_over_control(c, index, noise, oc, BitsRule::from_level0); !st.ok()) break;
+    const std::vector<RdPoint> curve = encoder_rd_curve(c, index, true);
+    why += ", " + describe(b, curve);
+    candidates.push_back({b, curve});
+  }
+  const int best = fewest_control_bits(bits, kept, candidates);
+  if (best != bits) {
+    EncodeOptions ob = o;
+    ob.control_bits = best;
+    if (Status st = encode_over_control(e, index, noise, ob, BitsRule::from_level0); !st.ok()) return st;
+  }
+  e.control_choice += "; Draco bits " + std::to_string(best) + " of " + why + ", distances to the points over the area";
+  e.seconds.choice += since(t) - (best != bits ? e.seconds.draco + e.seconds.levels : 0.0);
   return {};
 }
 
@@ -522,6 +591,9 @@ Result<Encoding> encode_points(const PointIndex& input_index, const EncodeOption
                           ", then encoded with level 0's (" + std::to_string(e.control_bits) + ")" +
                           (smooth ? " and smoothed levels" : "");
     }
+    if (clean_cloud(noise) && o.control_bits == 0 && o.control_bits_from_level0 && e.creases.creases == 0 &&
+        e.creases.snapped == 0)
+      if (Status st = choose_control_bits(e, index, noise, o); !st.ok()) return st;
   }
   const uint32_t level_count = e.level_count;
   format::FileContents& c = e.contents;
