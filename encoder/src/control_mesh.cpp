@@ -334,6 +334,7 @@ Result<ControlMeshStages> build_control_mesh(const PointIndex& index, const Cont
                                                                                                       : sheet ? s.wrapped.triangle_count()
                                                                                                       : s.shell.triangle_count()),
                                                                   wrapped_info.genus);
+  s.target_faces = target;
   auto simplified = simplify_mesh(s.wrapped, target, &s.simplify_stats);
   if (!simplified.ok()) return simplified.status();
   s.simplified = std::move(simplified).value();

@@ -617,7 +617,7 @@ Result<Encoding> encode_points(const PointIndex& input_index, const EncodeOption
   char shift_text[48] = "";
   if (e.stages.carving.shift != 0) std::snprintf(shift_text, sizeof shift_text, " grid-shift=%.17g", e.stages.carving.shift);
   const std::string params = "grid=" + std::to_string(e.stages.carving.grid) + shift_text + " control-faces=" +
-                             std::to_string(e.stages.control.triangle_count()) + " control-bits=" +
+                             std::to_string(e.stages.target_faces) + " control-bits=" +
                              std::to_string(e.control_bits) + " levels=" + std::to_string(level_count) + (o.levels == kAutoLevels ? " (auto)" : "") +
                              " error=" + error_text + " effort=" + std::to_string(o.effort) +
                              " surface=" + surface_mode_name(o.control.surface) +

@@ -9,7 +9,9 @@
 #include <string>
 
 #include "dbss/encoder/encode.h"
+#include "../crease_shapes.h"
 #include "../defect_shapes.h"
+#include "../sampled_shapes.h"
 
 using namespace dbss;
 namespace dt = dbss::test;
@@ -86,4 +88,34 @@ TEST_CASE("grid shift: an unshifted choice writes no grid-shift, and its grid al
   auto b = encode_points(pc, given);
   REQUIRE(b.ok());
   CHECK(b.value().bytes == a.value().bytes);
+}
+
+TEST_CASE("control-faces in encoder.params is the count QEM was asked for: a tagged file with collapses is made again by it") {
+  // Creases collapse short edges and flip slivers after QEM
+  // (crease_short_edges.cpp), so the file's control mesh has fewer faces
+  // than QEM made.  Recording that final count built a different mesh when
+  // given back; the request is what reproduces the file.
+  const PointCloud pc = test::sampled(test::cube(), 8000, 1);
+  EncodeOptions o = test::crease_options(30, 1);
+  auto a = encode_points(pc, o);
+  REQUIRE(a.ok());
+  REQUIRE(a.value().creases.creases > 0);
+  REQUIRE(a.value().creases.short_collapses > 0);
+  REQUIRE(a.value().control.triangle_count() != a.value().stages.target_faces);
+  const std::string p = params(a.value());
+  INFO("encoder.params: " << p);
+  const int faces = std::atoi(param(p, "control-faces").c_str());
+  CHECK(faces == static_cast<int>(a.value().stages.target_faces));
+
+  EncodeOptions given = o;
+  given.control.grid = std::atoi(param(p, "grid").c_str());
+  given.control.control_faces = static_cast<uint32_t>(faces);
+  given.control_bits = std::atoi(param(p, "control-bits").c_str());
+  auto b = encode_points(pc, given);
+  REQUIRE(b.ok());
+  // The same surface at every level (meta differs: no face choice ran).
+  CHECK(b.value().control.triangle_count() == a.value().control.triangle_count());
+  CHECK(b.value().control.positions == a.value().control.positions);
+  CHECK(b.value().levels.positions == a.value().levels.positions);
+  CHECK(b.value().contents.level_data == a.value().contents.level_data);
 }

@@ -72,6 +72,10 @@ struct ControlMeshStages {
   MeshInfo shell_info;
   ShrinkWrapStats wrap_stats;
   SimplifyStats simplify_stats;
+  // The face count QEM was asked for (given or default_control_faces).  Later
+  // stages (crease collapses, alignment) may change the count; `meta`
+  // records this one, so --control-faces with it builds the same mesh.
+  uint32_t target_faces = 0;
   ShapeStats shape_stats;  // flips and moves of the shaping pass, the shape before and after it
   size_t projection_skipped = 0;  // control vertices left off the points (a fold), plus moves undone (a crossing)
   size_t untangled = 0;           // folded edges the simplification left, smoothed out before projection
