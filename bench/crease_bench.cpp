@@ -386,6 +386,8 @@ int main(int argc, char** argv) {
       if (const char* r = std::getenv("CREASE_BENCH_BITS")) eo.control_bits = std::atoi(r);
       // CREASE_BENCH_CLAMP=1: a tagged control mesh clamped onto the points' box faces (CreaseOptions::clamp_to_points).
       if (const char* r = std::getenv("CREASE_BENCH_CLAMP")) eo.creases.clamp_to_points = std::atoi(r) != 0;
+      // CREASE_BENCH_SETTLE=1: untagged control vertices off the points settled onto them (CreaseOptions::settle_off_points).
+      if (const char* r = std::getenv("CREASE_BENCH_SETTLE")) eo.creases.settle_off_points = std::atoi(r) != 0;
       eo.control.shape.enabled = shaping;
       eo.creases.split = split;
       eo.choose_control = !fixed_control;
@@ -476,8 +478,8 @@ int main(int argc, char** argv) {
       const dbss::CreaseStats& s = runs[on].stats;
       if (against_no_collapse || against_no_wedge || against_no_relax || against_beside || against_no_gate || against_no_vflips || against_no_flat_corners || against_sides_everywhere) std::printf("%s: ", on ? "after" : "before");
       std::printf("aligned: %zu vertices moved onto feature lines, %zu merged into a neighbour on one, %zu flat-face moves, %zu flat edges flipped toward valence 6, %zu edges flipped and %zu split along "
-                  "them, %zu chain edges, %zu slivers flipped, %zu short edges collapsed; creases: %zu edges, %zu corners (%zu on flat fans, %zu dropped by the check), %zu darts, feature length %.3f; tags %zu bytes\n",
-                  s.aligned, s.align_collapses, s.align_relaxed, s.align_valence_flips, s.align_flips, s.align_splits, s.chain_edges, s.sliver_flips, s.short_collapses, s.creases, s.corners + s.flat_corners, s.flat_corners, s.flat_corners_dropped, s.darts,
+                  "them, %zu chain edges, %zu slivers flipped, %zu short edges collapsed, %zu vertices off the points settled; creases: %zu edges, %zu corners (%zu on flat fans, %zu dropped by the check), %zu darts, feature length %.3f; tags %zu bytes\n",
+                  s.aligned, s.align_collapses, s.align_relaxed, s.align_valence_flips, s.align_flips, s.align_splits, s.chain_edges, s.sliver_flips, s.short_collapses, s.settled, s.creases, s.corners + s.flat_corners, s.flat_corners, s.flat_corners_dropped, s.darts,
                   runs[on].length / diag, runs[on].tag_bytes);
     }
     std::printf("control mesh: off: %s; on: %s\n", runs[0].choice.c_str(), runs[1].choice.c_str());

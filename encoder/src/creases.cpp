@@ -13,6 +13,7 @@
 #include "dbss/decoder/topology.h"
 #include "dbss/encoder/crease_align.h"
 #include "dbss/encoder/point_distances.h"
+#include "crease_off_points.h"
 #include "crease_short_edges.h"
 #include "crease_slivers.h"
 
@@ -723,6 +724,9 @@ format::Creases find_creases(TriangleMesh& mesh, const PointIndex& points, const
   const LevelTopology& final_t = st.short_collapses > 0 ? collapsed : flipped_t;
   // A flip splits one tagged edge into two: count the tags the file holds.
   if (st.sliver_flips > 0 || st.short_collapses > 0) st.creases = static_cast<size_t>(std::count_if(out.edge.begin(), out.edge.end(), [](uint8_t b) { return b != 0; }));
+  // Untagged vertices the builder left off the points, onto them
+  // (crease_off_points.h); before the flat fans are judged.
+  if (o.settle_off_points) st.settled = settle_off_points(mesh, final_t, out, count, points);
   if (o.flat_corners) tag_flat_fans(mesh, final_t, count, o.flat_fan_degrees, o.flat_fan_fit, o.flat_fan_check, out, st);
   if (stats) *stats = st;
   return out;
