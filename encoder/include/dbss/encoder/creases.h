@@ -200,6 +200,12 @@ struct CreaseOptions {
   // collapsed into one end (crease_short_edges.h): its level-1 stencil
   // point lands edge lengths off it, past the line or off the face.
   bool short_collapses = true;
+  // After those, the shaping pass once more (crease_shape.h): edge flips
+  // toward valence 6 and away from slivers, and sliver vertices moved from
+  // point to point, with no tagged edge flipped and no vertex on a line or
+  // tagged corner moved (issue 16 item 0: the alignment's moves and flips
+  // leave slivers and high valences beside the lines).
+  bool shape_after_tags = true;
 };
 
 struct CreaseStats {
@@ -223,6 +229,9 @@ struct CreaseStats {
   size_t in_pieces_dropped = 0;  // crease edges found but untagged, too many darts among them (CreaseOptions::max_dart_share)
   size_t short_collapses = 0;  // short untagged edges collapsed (CreaseOptions::short_collapses)
   size_t sliver_flips = 0;  // slivers along a tagged line flipped away (CreaseOptions::sliver_flips)
+  // The shaping pass on the tagged mesh (CreaseOptions::shape_after_tags):
+  // edges flipped, vertices moved, rounds undone because triangles crossed.
+  size_t shape_flips = 0, shape_moves = 0, shape_rounds_undone = 0;
 };
 
 // First aligns `mesh` to the feature lines (align_to_features: vertices
@@ -237,8 +246,10 @@ struct CreaseStats {
 // crease edges, or aligned onto a corner with one, is tagged corner.  The vertices of crease
 // edges move to the least-squares point of their sides' planes (onto the
 // feature line; to the corner where three planes meet), by at most a third
-// of their shortest edge.  Returns the tags in `mesh`'s canonical edge
-// order (empty when none is found or the option is off).
+// of their shortest edge.  A mesh that keeps tags is then cleaned up along
+// the lines (sliver_flips, short_collapses) and shaped with the lines held
+// (shape_after_tags).  Returns the tags in `mesh`'s canonical edge order
+// (empty when none is found or the option is off).
 format::Creases find_creases(TriangleMesh& mesh, const PointIndex& points, const CreaseOptions& options,
                              CreaseStats* stats = nullptr);
 
