@@ -123,6 +123,10 @@ bool try_flip(TriangleMesh& m, FlipState& s, uint32_t f, uint32_t a, uint32_t b,
   const bool valence_flip = e_new < e_old && q_new >= kValenceFlipKeeps * q_old;
   const bool quality_flip = q_old < kQualityFlipBelow && q_new > kQualityFlipGain * q_old && e_new <= e_old + 2;
   if (!valence_flip && !quality_flip) return false;
+  if (locks != nullptr && !locks->beside.empty()) {
+    const uint8_t most = std::max(std::max(locks->beside[a], locks->beside[b]), std::max(locks->beside[c], locks->beside[d]));
+    if (most >= 2 || (most == 1 && q_new < q_old)) return false;
+  }
   if (points != nullptr && gap_to_points(*points, midpoint(pc, pd)) > gap_to_points(*points, midpoint(pa, pb)) + slack)
     return false;
   // a->b->c and b->a->d become a->d->c and d->b->c.

@@ -98,6 +98,11 @@ ShapeStats improve_shape(TriangleMesh& mesh, const PointIndex* points, const Sha
 struct ShapeLocks {
   std::vector<uint8_t> pinned;
   std::unordered_set<uint64_t> kept_edges;
+  // Flips held at vertices (empty: none): a flip with one of its four
+  // corners at 1 (on a tagged line) is made only when the worse of its two
+  // triangles gets no worse; with one at 2 (at an untagged edge that bends
+  // sharply: a gap in a line) it is not made.
+  std::vector<uint8_t> beside;
 };
 // improve_shape with `locks`: as above, and no pinned vertex moves and no
 // kept edge is flipped (a kept edge stays an edge: a flip only removes the
