@@ -51,6 +51,7 @@
 #include <ctime>
 #include <filesystem>
 #include <random>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -373,6 +374,7 @@ int main(int argc, char** argv) {
         flag("relax_after", eo.creases.relax_after_flips), flag("untag_flat", eo.creases.untag_flat);
         flag("slivers", eo.creases.sliver_flips), flag("short", eo.creases.short_collapses);
         flag("gap", eo.creases.gap_snaps), flag("fanfit", eo.creases.flat_fan_fit), flag("fancheck", eo.creases.flat_fan_check);
+        flag("shape", eo.creases.shape_after_tags);
       }
       // CREASE_BENCH_SMOOTH=R: CreaseOptions::smooth_ratio (0: without the smooth test, as before it).
       if (const char* r = std::getenv("CREASE_BENCH_SMOOTH")) eo.creases.smooth_ratio = std::atof(r);
@@ -416,6 +418,42 @@ int main(int argc, char** argv) {
         std::printf("control vertices clamped onto the points' box faces: %zu\n", enc.creases.clamped_to_points);
       }
       runs[on].shape = dbss::mesh_shape(enc.control);
+      // CREASE_BENCH_POOR=1: where the control mesh's poor triangles and its
+      // highest valence sit against the tags (issue 16 item 0): poor
+      // triangles by their count of tagged edges and of vertices on a line
+      // or corner.
+      if (std::getenv("CREASE_BENCH_POOR") && on) {
+        const dbss::TriangleMesh& c = enc.control;
+        auto bt = dbss::build_topology(static_cast<uint32_t>(c.vertex_count()), c.triangles);
+        if (bt.ok()) {
+          const dbss::LevelTopology& t = bt.value();
+          const dbss::format::Creases& tg = enc.contents.creases;
+          std::vector<uint32_t> lines(t.vertex_count, 0), valence(t.vertex_count, 0);
+          std::set<std::pair<uint32_t, uint32_t>> tagged;
+          for (uint32_t e = 0; e < t.edge_count(); ++e) {
+            const uint32_t u = t.triangles[t.edge_half[e]], w = t.triangles[dbss::next_half(t.edge_half[e])];
+            ++valence[u], ++valence[w];
+            if (!tg.empty() && tg.edge[e]) ++lines[u], ++lines[w], tagged.insert({std::min(u, w), std::max(u, w)});
+          }
+          int table[4][4] = {};
+          for (size_t f = 0; f < c.triangle_count(); ++f) {
+            if (dbss::triangle_quality(c, f) >= dbss::kPoorQuality) continue;
+            int te = 0, sv = 0;
+            for (int k = 0; k < 3; ++k) {
+              const uint32_t a = c.triangles[3 * f + k], b = c.triangles[3 * f + (k + 1) % 3];
+              te += tagged.count({std::min(a, b), std::max(a, b)}) ? 1 : 0;
+              sv += lines[a] > 0 || (!tg.empty() && tg.corner[a]);
+            }
+            ++table[te][sv];
+          }
+          std::printf("poor triangles by tagged edges (rows 0-3) x sharp vertices (columns 0-3):");
+          for (int i = 0; i < 4; ++i) std::printf(" [%d %d %d %d]", table[i][0], table[i][1], table[i][2], table[i][3]);
+          std::printf("\nvertices over valence 10:");
+          for (uint32_t v = 0; v < t.vertex_count; ++v)
+            if (valence[v] > 10) std::printf(" %u (%u lines%s)", valence[v], lines[v], !tg.empty() && tg.corner[v] ? ", corner" : "");
+          std::printf("\n");
+        }
+      }
       for (const auto& t : enc.toc)
         if (t.type == dbss::format::kCrea) runs[on].tag_bytes = t.length + 12 + 16;  // data, frame, INDX entry
       // The same file as off: the same levels, so the same figures (and
@@ -478,8 +516,8 @@ int main(int argc, char** argv) {
       const dbss::CreaseStats& s = runs[on].stats;
       if (against_no_collapse || against_no_wedge || against_no_relax || against_beside || against_no_gate || against_no_vflips || against_no_flat_corners || against_sides_everywhere) std::printf("%s: ", on ? "after" : "before");
       std::printf("aligned: %zu vertices moved onto feature lines, %zu merged into a neighbour on one, %zu flat-face moves, %zu flat edges flipped toward valence 6, %zu edges flipped and %zu split along "
-                  "them, %zu chain edges, %zu slivers flipped, %zu short edges collapsed, %zu vertices off the points settled; creases: %zu edges, %zu corners (%zu on flat fans, %zu dropped by the check), %zu darts, feature length %.3f; tags %zu bytes\n",
-                  s.aligned, s.align_collapses, s.align_relaxed, s.align_valence_flips, s.align_flips, s.align_splits, s.chain_edges, s.sliver_flips, s.short_collapses, s.settled, s.creases, s.corners + s.flat_corners, s.flat_corners, s.flat_corners_dropped, s.darts,
+                  "them, %zu chain edges, %zu slivers flipped, %zu short edges collapsed, %zu flips and %zu moves shaping (%zu rounds undone), %zu vertices off the points settled; creases: %zu edges, %zu corners (%zu on flat fans, %zu dropped by the check), %zu darts, feature length %.3f; tags %zu bytes\n",
+                  s.aligned, s.align_collapses, s.align_relaxed, s.align_valence_flips, s.align_flips, s.align_splits, s.chain_edges, s.sliver_flips, s.short_collapses, s.shape_flips, s.shape_moves, s.shape_rounds_undone, s.settled, s.creases, s.corners + s.flat_corners, s.flat_corners, s.flat_corners_dropped, s.darts,
                   runs[on].length / diag, runs[on].tag_bytes);
     }
     std::printf("control mesh: off: %s; on: %s\n", runs[0].choice.c_str(), runs[1].choice.c_str());

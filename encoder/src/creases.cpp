@@ -14,6 +14,7 @@
 #include "dbss/encoder/crease_align.h"
 #include "dbss/encoder/point_distances.h"
 #include "crease_off_points.h"
+#include "crease_shape.h"
 #include "crease_short_edges.h"
 #include "crease_slivers.h"
 
@@ -721,7 +722,13 @@ format::Creases find_creases(TriangleMesh& mesh, const PointIndex& points, const
     if (made == 0) break;
     st.short_collapses += made, collapsed = std::move(next);
   }
-  const LevelTopology& final_t = st.short_collapses > 0 ? collapsed : flipped_t;
+  const LevelTopology& cleaned_t = st.short_collapses > 0 ? collapsed : flipped_t;
+  LevelTopology shaped;
+  if (o.shape_after_tags) {
+    const ShapeStats shape = shape_tagged_mesh(mesh, cleaned_t, out, count, points, shaped);
+    st.shape_flips = shape.flips, st.shape_moves = shape.moves, st.shape_rounds_undone = shape.rounds_undone;
+  }
+  const LevelTopology& final_t = st.shape_flips > 0 ? shaped : cleaned_t;
   // A flip splits one tagged edge into two: count the tags the file holds.
   if (st.sliver_flips > 0 || st.short_collapses > 0) st.creases = static_cast<size_t>(std::count_if(out.edge.begin(), out.edge.end(), [](uint8_t b) { return b != 0; }));
   // Untagged vertices the builder left off the points, onto them

@@ -98,9 +98,10 @@ uint32_t third(const TriangleMesh& m, uint32_t f, uint32_t u, uint32_t v) {
 // Tries the flip of the edge a->b of triangle f; says whether it was made.
 // `points` (may be null) with `slack`: see ShapeOptions::flip_slack.
 bool try_flip(TriangleMesh& m, FlipState& s, uint32_t f, uint32_t a, uint32_t b, double cos_bend, const PointIndex* points,
-              double slack) {
+              double slack, const ShapeLocks* locks) {
   const auto twin = s.edge.find(key(b, a));
   if (twin == s.edge.end()) return false;  // a boundary edge
+  if (locks != nullptr && locks->kept_edges.count(edge_key(a, b))) return false;
   const uint32_t g = twin->second;
   const uint32_t c = third(m, f, a, b), d = third(m, g, a, b);
   if (c == d || s.edge.count(key(c, d)) || s.edge.count(key(d, c))) return false;  // would be a second c-d edge
@@ -122,6 +123,10 @@ bool try_flip(TriangleMesh& m, FlipState& s, uint32_t f, uint32_t a, uint32_t b,
   const bool valence_flip = e_new < e_old && q_new >= kValenceFlipKeeps * q_old;
   const bool quality_flip = q_old < kQualityFlipBelow && q_new > kQualityFlipGain * q_old && e_new <= e_old + 2;
   if (!valence_flip && !quality_flip) return false;
+  if (locks != nullptr && !locks->beside.empty()) {
+    const uint8_t most = std::max(std::max(locks->beside[a], locks->beside[b]), std::max(locks->beside[c], locks->beside[d]));
+    if (most >= 2 || (most == 1 && q_new < q_old)) return false;
+  }
   if (points != nullptr && gap_to_points(*points, midpoint(pc, pd)) > gap_to_points(*points, midpoint(pa, pb)) + slack)
     return false;
   // a->b->c and b->a->d become a->d->c and d->b->c.
@@ -139,7 +144,7 @@ bool try_flip(TriangleMesh& m, FlipState& s, uint32_t f, uint32_t a, uint32_t b,
   return true;
 }
 
-size_t flip_pass(TriangleMesh& m, double cos_bend, const PointIndex* points, double slack) {
+size_t flip_pass(TriangleMesh& m, double cos_bend, const PointIndex* points, double slack, const ShapeLocks* locks) {
   FlipState s(m);
   size_t flips = 0;
   // Until no flip is left (each valence flip lowers an integer energy, each
@@ -149,7 +154,7 @@ size_t flip_pass(TriangleMesh& m, double cos_bend, const PointIndex* points, dou
     for (uint32_t f = 0; f < m.triangle_count(); ++f)
       for (int k = 0; k < 3; ++k) {
         const uint32_t a = m.triangles[3 * size_t{f} + k], b = m.triangles[3 * size_t{f} + (k + 1) % 3];
-        if (a < b && try_flip(m, s, f, a, b, cos_bend, points, slack)) {
+        if (a < b && try_flip(m, s, f, a, b, cos_bend, points, slack, locks)) {
           ++now;
           break;  // triangle f changed: its other edges on the next sweep
         }
@@ -168,7 +173,7 @@ double fan_quality(const TriangleMesh& m, const Adjacency& vt, uint32_t v) {
 }
 
 // `snap`: the vertices move only onto points (see ShapeOptions::snap).
-size_t relax_pass(TriangleMesh& m, const PointIndex* points, double cos_bend, double relax_below, bool snap) {
+size_t relax_pass(TriangleMesh& m, const PointIndex* points, double cos_bend, double relax_below, bool snap, const ShapeLocks* locks) {
   const Adjacency vt = vertex_triangles(m);
   const Adjacency adj = vertex_adjacency(m);
   const Rim rim = rim_neighbours(m);
@@ -182,6 +187,7 @@ size_t relax_pass(TriangleMesh& m, const PointIndex* points, double cos_bend, do
   float dist2[kNear];
   for (uint32_t v = 0; v < m.vertex_count(); ++v) {
     if (!wanted[v] || rim[v][0] != kNotOnRim || vt.offset[v + 1] == vt.offset[v]) continue;
+    if (locks != nullptr && v < locks->pinned.size() && locks->pinned[v]) continue;
     // The vertex's normal, and whether it sits on a sharp feature (its
     // triangles bend away from that normal).
     V3 n = {0, 0, 0};
@@ -275,6 +281,11 @@ MeshShape mesh_shape(const TriangleMesh& m) {
 }
 
 ShapeStats improve_shape(TriangleMesh& m, const PointIndex* points, const ShapeOptions& o) {
+  return improve_shape(m, points, o, ShapeLocks{});
+}
+
+ShapeStats improve_shape(TriangleMesh& m, const PointIndex* points, const ShapeOptions& o, const ShapeLocks& locks) {
+  const ShapeLocks* lk = locks.pinned.empty() && locks.kept_edges.empty() ? nullptr : &locks;
   ShapeStats st;
   st.before = mesh_shape(m);
   if (o.enabled && m.triangle_count() > 0) {
@@ -284,8 +295,8 @@ ShapeStats improve_shape(TriangleMesh& m, const PointIndex* points, const ShapeO
     const double slack = points != nullptr ? o.flip_slack * point_spacing(*points, 1, 0.5) : 0;
     for (int r = 0; r < o.rounds; ++r) {
       const TriangleMesh saved = m;
-      const size_t flips = flip_pass(m, cos_flip, points, slack);
-      const size_t moves = relax_pass(m, points, cos_bend, o.relax_below, o.snap);
+      const size_t flips = flip_pass(m, cos_flip, points, slack, lk);
+      const size_t moves = relax_pass(m, points, cos_bend, o.relax_below, o.snap, lk);
       if (count_self_intersections(m) > crossings) {
         m = saved;
         ++st.rounds_undone;

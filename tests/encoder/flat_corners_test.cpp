@@ -25,6 +25,11 @@ TEST_CASE("a sampled roof block: corner tags on flat lopsided fans keep level 1 
   for (int now = 0; now < 2; ++now) {
     EncodeOptions o = test::crease_options(30, 1);
     o.creases.flat_corners = now == 1;
+    // The tagged mesh's second shaping pass (crease_shape.h) mends part of
+    // the same lopsided fans: with it, level 1's worst is 0.83% without the
+    // tags and 0.63% with them (x0.76).  Off here, to measure the tags
+    // against the fans as they were written against.
+    o.creases.shape_after_tags = false;
     auto e = encode_points(pc, o);
     REQUIRE(e.ok());
     const Encoding& enc = e.value();

@@ -210,6 +210,12 @@ struct CreaseOptions {
   // level 3 is still 1.6% under the old one).  bench/crease_bench.md,
   // sixteenth session.
   bool settle_off_points = false;
+  // After those, the shaping pass once more (crease_shape.h): edge flips
+  // toward valence 6 and away from slivers, and sliver vertices moved from
+  // point to point, with no tagged edge flipped and no vertex on a line or
+  // tagged corner moved (issue 16 item 0: the alignment's moves and flips
+  // leave slivers and high valences beside the lines).
+  bool shape_after_tags = true;
 };
 
 struct CreaseStats {
@@ -234,6 +240,9 @@ struct CreaseStats {
   size_t short_collapses = 0;  // short untagged edges collapsed (CreaseOptions::short_collapses)
   size_t sliver_flips = 0;  // slivers along a tagged line flipped away (CreaseOptions::sliver_flips)
   size_t settled = 0;  // untagged vertices off the points moved onto them (CreaseOptions::settle_off_points)
+  // The shaping pass on the tagged mesh (CreaseOptions::shape_after_tags):
+  // edges flipped, vertices moved, rounds undone because triangles crossed.
+  size_t shape_flips = 0, shape_moves = 0, shape_rounds_undone = 0;
 };
 
 // First aligns `mesh` to the feature lines (align_to_features: vertices
@@ -248,8 +257,10 @@ struct CreaseStats {
 // crease edges, or aligned onto a corner with one, is tagged corner.  The vertices of crease
 // edges move to the least-squares point of their sides' planes (onto the
 // feature line; to the corner where three planes meet), by at most a third
-// of their shortest edge.  Returns the tags in `mesh`'s canonical edge
-// order (empty when none is found or the option is off).
+// of their shortest edge.  A mesh that keeps tags is then cleaned up along
+// the lines (sliver_flips, short_collapses) and shaped with the lines held
+// (shape_after_tags).  Returns the tags in `mesh`'s canonical edge order
+// (empty when none is found or the option is off).
 format::Creases find_creases(TriangleMesh& mesh, const PointIndex& points, const CreaseOptions& options,
                              CreaseStats* stats = nullptr);
 

@@ -8,6 +8,8 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <unordered_set>
+#include <vector>
 
 #include "dbss/decoder/mesh.h"
 #include "dbss/encoder/point_index.h"
@@ -89,5 +91,22 @@ struct ShapeStats {
 // the pass is undone and ends the pass.  Deterministic (a fixed visiting
 // order).
 ShapeStats improve_shape(TriangleMesh& mesh, const PointIndex* points, const ShapeOptions& options = {});
+
+// What a shaping pass must leave alone (a tagged control mesh's lines):
+// vertices that never move (pinned[v] != 0; empty: none) and undirected
+// edges that are never flipped (mesh_geometry.h's edge_key of their ends).
+struct ShapeLocks {
+  std::vector<uint8_t> pinned;
+  std::unordered_set<uint64_t> kept_edges;
+  // Flips held at vertices (empty: none): a flip with one of its four
+  // corners at 1 (on a tagged line) is made only when the worse of its two
+  // triangles gets no worse; with one at 2 (at an untagged edge that bends
+  // sharply: a gap in a line) it is not made.
+  std::vector<uint8_t> beside;
+};
+// improve_shape with `locks`: as above, and no pinned vertex moves and no
+// kept edge is flipped (a kept edge stays an edge: a flip only removes the
+// edge it flips).
+ShapeStats improve_shape(TriangleMesh& mesh, const PointIndex* points, const ShapeOptions& options, const ShapeLocks& locks);
 
 }  // namespace dbss
