@@ -66,6 +66,7 @@ Status encode_over_mesh_control(const TriangleMesh& in, const MeshInfo& info, co
                             std::to_string(info.genus) + ", " + std::to_string(info.boundary_loops) +
                             " boundary loop(s)";
   e.stages.simplify_stats = {stats.faces_before, stats.faces_after};
+  e.stages.target_faces = target;
   e.seconds.control = since(t);
 
   format::FileContents& c = e.contents;
@@ -196,7 +197,7 @@ Status encode_over_mesh_control(const TriangleMesh& in, const MeshInfo& info, co
   c.header.version_minor = format::minimum_version_minor(c);
   char error_text[32];
   std::snprintf(error_text, sizeof error_text, "%g", e.error);
-  std::string params = "input=mesh control-faces=" + std::to_string(e.control.triangle_count()) +
+  std::string params = "input=mesh control-faces=" + std::to_string(e.stages.target_faces) +
                        " control-bits=" + std::to_string(e.control_bits) + " levels=" + std::to_string(e.level_count) +
                        (o.levels == kAutoLevels ? " (auto)" : "") + " error=" + error_text +
                        " effort=" + std::to_string(o.effort);

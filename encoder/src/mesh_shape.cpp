@@ -285,7 +285,7 @@ ShapeStats improve_shape(TriangleMesh& m, const PointIndex* points, const ShapeO
 }
 
 ShapeStats improve_shape(TriangleMesh& m, const PointIndex* points, const ShapeOptions& o, const ShapeLocks& locks) {
-  const ShapeLocks* lk = locks.pinned.empty() && locks.kept_edges.empty() ? nullptr : &locks;
+  const ShapeLocks* lk = locks.pinned.empty() && locks.kept_edges.empty() && locks.beside.empty() ? nullptr : &locks;
   ShapeStats st;
   st.before = mesh_shape(m);
   if (o.enabled && m.triangle_count() > 0) {

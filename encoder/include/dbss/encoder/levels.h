@@ -45,7 +45,8 @@ struct LevelEncodeOptions {
   // bytes; otherwise the level keeps the boundary rule alone (no BDRY, its
   // boundary odd vertices cast again with LevelSampler::boundary_mode
   // false).  false: BDRY wherever a value is non-zero (the 1.3 encoder's
-  // rule).  Not with RDO or smoothing (their levels keep BDRY as before).
+  // rule).  Not with smoothing (its levels keep BDRY as before); RDO levels
+  // take the rule too, from their planned integers.
   bool boundary_when_pays = false;
 };
 
