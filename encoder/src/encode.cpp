@@ -1,6 +1,7 @@
 #include "dbss/encoder/encode.h"
 #include "control_choice.h"
 #include "encode_steps.h"
+#include "mesh_geometry.h"
 
 #include <algorithm>
 #include <chrono>
@@ -372,6 +373,16 @@ constexpr int kFewerControlBits = 2;
 // keep their quarter mesh's 10 and 9.  A finer grid is not tried: level
 // 0's bits are already the step's or coarser, and more bits did not lower
 // the floor (elephant at 11/13/16 bits: 1.680/1.748/1.754e-4).
+// Triangles of `m` with no area (two corners on one point, or three in line).
+size_t degenerate_triangles(const TriangleMesh& m) {
+  size_t n = 0;
+  for (size_t f = 0; f < m.triangle_count(); ++f) {
+    const mesh_geometry::V3 c = mesh_geometry::face_normal(m, f);
+    n += mesh_geometry::dot(c, c) == 0;
+  }
+  return n;
+}
+
 Status choose_control_bits(Encoding& e, const PointIndex& index, const PointNoise& noise, const EncodeOptions& o) {
   const auto t = Clock::now();
   const std::vector<RdPoint> kept = encoder_rd_curve(e, index, true);
@@ -400,6 +411,14 @@ Status choose_control_bits(Encoding& e, const PointIndex& index, const PointNois
       oc.on_progress = [prefix, &o](const std::string& s) { o.on_progress(prefix + s); };
     }
     if (Status st = encode_over_control(c, index, noise, oc, BitsRule::from_level0); !st.ok()) break;
+    // A coarser grid can round a thin triangle flat; its normal, and every
+    // level's displacement directions there, would then come from rounding.
+    // The distances to the points hardly see one triangle, so such a
+    // candidate (and any coarser one) is not taken.
+    if (degenerate_triangles(c.control) > degenerate_triangles(e.control)) {
+      why += ", " + std::to_string(b) + " bits (a control triangle rounded flat)";
+      break;
+    }
     const std::vector<RdPoint> curve = encoder_rd_curve(c, index, true);
     why += ", " + describe(b, curve);
     candidates.push_back({b, curve});
