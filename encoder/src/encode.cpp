@@ -424,13 +424,16 @@ Status choose_control_bits(Encoding& e, const PointIndex& index, const PointNois
     candidates.push_back({b, curve});
   }
   const int best = fewest_control_bits(bits, kept, candidates);
+  // The first encoding's Draco and levels, replaced below when fewer bits
+  // win, were work of the choice: counted in it, as choose_control does.
+  const double first = e.seconds.draco + e.seconds.levels;
   if (best != bits) {
     EncodeOptions ob = o;
     ob.control_bits = best;
     if (Status st = encode_over_control(e, index, noise, ob, BitsRule::from_level0); !st.ok()) return st;
   }
   e.control_choice += "; Draco bits " + std::to_string(best) + " of " + why + ", distances to the points over the area";
-  e.seconds.choice += since(t) - (best != bits ? e.seconds.draco + e.seconds.levels : 0.0);
+  e.seconds.choice += since(t) - (best != bits ? e.seconds.draco + e.seconds.levels - first : 0.0);
   return {};
 }
 
