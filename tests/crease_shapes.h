@@ -2,8 +2,11 @@
 // dihedral angles of the mesh (a mesh input gives them directly).
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <set>
+#include <utility>
 #include <vector>
 
 #include "dbss/decoder/mesh.h"
@@ -11,6 +14,19 @@
 #include "dbss/format/container.h"
 
 namespace dbss::test {
+
+// The tagged edges of a control mesh as sorted vertex pairs (independent
+// of the edge numbering, which flips and collapses change).
+using Pairs = std::set<std::pair<uint32_t, uint32_t>>;
+inline Pairs tagged_pairs(const LevelTopology& t, const format::Creases& tags) {
+  Pairs out;
+  for (uint32_t e = 0; e < t.edge_count(); ++e)
+    if (tags.edge[e]) {
+      const uint32_t u = t.triangles[t.edge_half[e]], w = t.triangles[next_half(t.edge_half[e])];
+      out.insert({std::min(u, w), std::max(u, w)});
+    }
+  return out;
+}
 
 // The unit cube [-1, 1]^3: 8 vertices, 12 triangles (each face split along
 // one diagonal), counter-clockwise from outside.

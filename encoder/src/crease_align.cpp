@@ -58,13 +58,6 @@ V3 unit(V3 v) {
   return l > 0 ? V3{v[0] / l, v[1] / l, v[2] / l} : V3{0, 0, 0};
 }
 
-double quality(V3 a, V3 b, V3 c) {
-  const double e = dot(sub(b, a), sub(b, a)) + dot(sub(c, b), sub(c, b)) + dot(sub(a, c), sub(a, c));
-  if (!(e > 0)) return 0;
-  const V3 n = cross(sub(b, a), sub(c, a));
-  return 2 * std::sqrt(3.0) * std::sqrt(dot(n, n)) / e;
-}
-
 uint64_t key(uint32_t u, uint32_t v) { return (uint64_t{u} << 32) | v; }
 
 // The vertices of `v`'s triangles `fan` other than v, sorted, each once: as

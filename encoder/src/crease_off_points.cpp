@@ -25,13 +25,6 @@ constexpr int kSteps = 4;
 // (a 64-gon's wall over 8 points: 1e-3; a cube's edge: ~1).
 constexpr double kFlat = 0.05;
 
-double quality(const V3& a, const V3& b, const V3& c) {
-  const double e = dot(sub(b, a), sub(b, a)) + dot(sub(c, b), sub(c, b)) + dot(sub(a, c), sub(a, c));
-  if (!(e > 0)) return 0;
-  const V3 n = cross(sub(b, a), sub(c, a));
-  return 2 * std::sqrt(3.0) * std::sqrt(dot(n, n)) / e;
-}
-
 // The plane of the points nearest q: its centroid and unit normal (false:
 // too few points, or they are not a plane: beside a line or a corner).
 bool near_plane(const PointIndex& points, const V3& q, V3& centre, V3& normal) {

@@ -19,13 +19,6 @@ constexpr double kTurn = 0.866;  // cos 30 degrees
 constexpr double kSliver = 0.05;
 constexpr uint32_t kValence = 10;
 
-double quality(const V3& a, const V3& b, const V3& c) {
-  const double e = dot(sub(b, a), sub(b, a)) + dot(sub(c, b), sub(c, b)) + dot(sub(a, c), sub(a, c));
-  if (!(e > 0)) return 0;
-  const V3 n = cross(sub(b, a), sub(c, a));
-  return 2 * std::sqrt(3.0) * std::sqrt(dot(n, n)) / e;
-}
-
 }  // namespace
 
 size_t collapse_short_edges(TriangleMesh& mesh, const LevelTopology& t, format::Creases& tags, std::vector<uint32_t>& count,

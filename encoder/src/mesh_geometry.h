@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -19,6 +20,14 @@ inline V3 sub(V3 a, V3 b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
 inline V3 cross(V3 a, V3 b) { return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]}; }
 inline double dot(V3 a, V3 b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 // An undirected edge's key: the same for (a, b) and (b, a).
+// A triangle's shape: 4 sqrt(3) area / (sum of squared edges); 1 when
+// equilateral, 0 when flat or a point.
+inline double quality(V3 a, V3 b, V3 c) {
+  const double e = dot(sub(b, a), sub(b, a)) + dot(sub(c, b), sub(c, b)) + dot(sub(a, c), sub(a, c));
+  if (!(e > 0)) return 0;
+  const V3 n = cross(sub(b, a), sub(c, a));
+  return 2 * std::sqrt(3.0) * std::sqrt(dot(n, n)) / e;
+}
 inline uint64_t edge_key(uint32_t a, uint32_t b) { return uint64_t{std::min(a, b)} << 32 | std::max(a, b); }
 // The mean of v's neighbours' positions (false: v has none).
 inline bool neighbour_mean(const TriangleMesh& m, const Adjacency& adj, uint32_t v, float out[3]) {

@@ -33,13 +33,6 @@ constexpr double kQualityFlipBelow = 0.35;
 // butterfly's extraordinary stencils grow and overshoot with it).
 constexpr int kMaxValence = 10;
 
-double quality(V3 a, V3 b, V3 c) {
-  const double e = dot(sub(b, a), sub(b, a)) + dot(sub(c, b), sub(c, b)) + dot(sub(a, c), sub(a, c));
-  if (!(e > 0)) return 0;
-  const V3 n = cross(sub(b, a), sub(c, a));
-  return 2 * std::sqrt(3.0) * std::sqrt(dot(n, n)) / e;
-}
-
 V3 unit(V3 v) {
   const double l = std::sqrt(dot(v, v));
   if (!(l > 0)) return {0, 0, 0};

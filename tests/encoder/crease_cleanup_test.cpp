@@ -12,23 +12,14 @@
 
 #include "crease_short_edges.h"
 #include "crease_slivers.h"
+#include "../crease_shapes.h"
 #include "dbss/decoder/topology.h"
 
 using namespace dbss;
+using test::Pairs;
+using test::tagged_pairs;
 
 namespace {
-
-using Pairs = std::set<std::pair<uint32_t, uint32_t>>;
-
-Pairs tagged_pairs(const LevelTopology& t, const format::Creases& tags) {
-  Pairs out;
-  for (uint32_t e = 0; e < t.edge_count(); ++e)
-    if (tags.edge[e]) {
-      const uint32_t u = t.triangles[t.edge_half[e]], w = t.triangles[next_half(t.edge_half[e])];
-      out.insert({std::min(u, w), std::max(u, w)});
-    }
-  return out;
-}
 
 bool has_edge(const LevelTopology& t, uint32_t a, uint32_t b) {
   for (uint32_t e = 0; e < t.edge_count(); ++e) {

@@ -22,20 +22,10 @@
 #include "encode_options.h"
 
 using namespace dbss;
+using test::Pairs;
+using test::tagged_pairs;
 
 namespace {
-
-using Pairs = std::set<std::pair<uint32_t, uint32_t>>;
-
-Pairs tagged_pairs(const LevelTopology& t, const format::Creases& tags) {
-  Pairs out;
-  for (uint32_t e = 0; e < t.edge_count(); ++e)
-    if (tags.edge[e]) {
-      const uint32_t u = t.triangles[t.edge_half[e]], w = t.triangles[next_half(t.edge_half[e])];
-      out.insert({std::min(u, w), std::max(u, w)});
-    }
-  return out;
-}
 
 // A 15 x 15 grid in z = 0 (squares split along a diagonal, the vertices
 // nudged off the lattice so that no three lie in line), then the edges
