@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include <Eigen/Dense>
 
+#include "dbss/encoder/point_distances.h"
 #include "mesh_geometry.h"
 
 namespace dbss {
@@ -33,20 +33,9 @@ bool near_plane(const PointIndex& points, const V3& q, V3& centre, V3& normal) {
   float dist2[kNear];
   const size_t found = points.nearest_k(qf, kNear, near, dist2);
   if (found < 3) return false;
-  const PointCloud& pc = points.points();
-  centre = {0, 0, 0};
-  for (size_t i = 0; i < found; ++i)
-    for (int a = 0; a < 3; ++a) centre[a] += pc.xyz[3 * size_t{near[i]} + a] / static_cast<double>(found);
-  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
-  for (size_t i = 0; i < found; ++i) {
-    const Eigen::Vector3d d(pc.xyz[3 * size_t{near[i]}] - centre[0], pc.xyz[3 * size_t{near[i]} + 1] - centre[1],
-                            pc.xyz[3 * size_t{near[i]} + 2] - centre[2]);
-    cov += d * d.transpose();
-  }
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
-  if (!(eig.eigenvalues()[0] <= kFlat * eig.eigenvalues()[1])) return false;
-  const Eigen::Vector3d n = eig.eigenvectors().col(0);
-  normal = {n[0], n[1], n[2]};
+  const PointPlane plane = fit_plane(points.points(), near, found);
+  if (!(plane.variance[0] <= kFlat * plane.variance[1])) return false;
+  centre = plane.point, normal = plane.normal;
   return true;
 }
 
