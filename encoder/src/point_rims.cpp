@@ -41,11 +41,6 @@ constexpr int kSectors = 12;
 // move by 0.1-0.2 with a few points more or less, so the margin is thin
 // both ways.
 constexpr double kMinFacing = 0.4;
-// rims_face_as_one_tube's default least ratio of the two ends' tube radii
-// is 0.75.  On the hole sweep (scan_bench --hole-sweep, 4,000 and 8,000
-// points) the loose pairs of a tube the surface capped have 0.87 and 0.91;
-// a false pair, an arc of a band round 70 degrees of a tube and the end of
-// another, 0.57.
 // Longest gap between a pair's centres, in larger radii.
 constexpr double kMaxGap = 6;
 
